@@ -1,0 +1,11 @@
+// Each invfree command registers its CLI11 subcommand here; the callback stores the
+// command's exit code in `exit_code`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace invfree {
+
+void register_simulate_command(CLI::App& app, int& exit_code);
+
+}  // namespace invfree

@@ -1,0 +1,31 @@
+// invfree: the command-line entry point. Each command lives in its own file and
+// registers itself in commands.h.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "invfree: inversion-free neo-Hookean elastodynamics of a soft square (lecture 9, "
+      "\"Stress and Its Derivative\").\n"
+      "Exit codes: 0 ok, 2 bad input (command line, scene file, --set), 3 a step failed "
+      "(Newton cap, non-finite values, broken invariant), 4 an output could not be written, "
+      "130 interrupted."};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "show help for every command");
+  int exit_code = invfree::exit_code::kOk;
+  invfree::register_simulate_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "invfree: %s (see invfree --help)\n", e.what());
+    return invfree::exit_code::kBadInput;
+  }
+  return exit_code;
+}

@@ -1,0 +1,32 @@
+#include "app/scene_options.h"
+
+#include "core/scene_file.h"
+
+namespace invfree {
+
+void SceneOptions::add_to(CLI::App* cmd) {
+  std::string names;
+  for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
+  cmd->add_option("--scene", scene, "built-in scene (" + names + ") or a TOML scene file")
+      ->capture_default_str();
+  cmd->add_option("--set", overrides,
+                  "override a scene value, e.g. --set material.E=1e4 (repeatable)")
+      ->type_name("SECTION.KEY=VALUE");
+}
+
+std::optional<SceneDef> SceneOptions::resolve(std::string* error) const {
+  SceneLoad load = load_scene(scene);
+  if (!load.scene) {
+    *error = load.error;
+    return std::nullopt;
+  }
+  for (const auto& o : overrides) {
+    if (auto e = apply_override(*load.scene, o); !e.empty()) {
+      *error = e;
+      return std::nullopt;
+    }
+  }
+  return load.scene;
+}
+
+}  // namespace invfree

@@ -1,0 +1,23 @@
+// The scene options every command shares: --scene NAME|FILE and repeated --set
+// section.key=value. `resolve` loads the scene, applies the overrides in order and
+// validates; on failure it returns an empty optional and a one-line error.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace invfree {
+
+struct SceneOptions {
+  std::string scene = "compress";
+  std::vector<std::string> overrides;
+
+  void add_to(CLI::App* cmd);
+  std::optional<SceneDef> resolve(std::string* error) const;
+};
+
+}  // namespace invfree

@@ -1,0 +1,416 @@
+#include "core/scene_file.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace invfree {
+
+namespace {
+
+// ---- typed readers: return "" or a reason -------------------------------------------
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+
+std::string read_number(const toml::node& n, double& out) {
+  if (auto v = n.value<double>(); v && (n.is_integer() || n.is_floating_point())) {
+    out = *v;
+    if (!std::isfinite(out)) return "must be a finite number";
+    return "";
+  }
+  return "expected a number, got " + type_name(n);
+}
+
+std::string read_int(const toml::node& n, long long& out) {
+  if (n.is_integer()) {
+    out = n.as_integer()->get();
+    return "";
+  }
+  if (n.is_floating_point()) {
+    const double d = n.as_floating_point()->get();
+    if (std::isfinite(d) && d == std::floor(d) && std::abs(d) < 1e15) {
+      out = static_cast<long long>(d);
+      return "";
+    }
+  }
+  return "expected an integer, got " + type_name(n);
+}
+
+std::string read_bool(const toml::node& n, bool& out) {
+  if (!n.is_boolean()) return "expected true or false, got " + type_name(n);
+  out = n.as_boolean()->get();
+  return "";
+}
+
+std::string read_string(const toml::node& n, std::string& out) {
+  if (!n.is_string()) return "expected a string, got " + type_name(n);
+  out = n.as_string()->get();
+  return "";
+}
+
+std::string read_vec2(const toml::node& n, Vec2& out) {
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 2) return "expected an array of two numbers, e.g. [0.0, -9.81]";
+  for (int k = 0; k < 2; ++k)
+    if (auto r = read_number(*a->get(k), out[k]); !r.empty()) return "element " + std::to_string(k) + ": " + r;
+  return "";
+}
+
+std::string set_double(const toml::node& n, double& field) { return read_number(n, field); }
+
+std::string set_int(const toml::node& n, int& field, long long lo, long long hi) {
+  long long v = 0;
+  if (auto r = read_int(n, v); !r.empty()) return r;
+  if (v < lo || v > hi) return "must be between " + std::to_string(lo) + " and " + std::to_string(hi);
+  field = static_cast<int>(v);
+  return "";
+}
+
+template <class Enum>
+std::string set_enum(const toml::node& n, Enum& field, std::optional<Enum> (*parse)(std::string_view),
+                     const char* choices) {
+  std::string s;
+  if (auto r = read_string(n, s); !r.empty()) return r;
+  auto v = parse(s);
+  if (!v) return "unknown value \"" + s + "\" (expected one of " + choices + ")";
+  field = *v;
+  return "";
+}
+
+std::optional<MassMode> mass_from_name(std::string_view s) {
+  if (s == "uniform") return MassMode::Uniform;
+  if (s == "lumped") return MassMode::Lumped;
+  return std::nullopt;
+}
+
+// ---- the key table --------------------------------------------------------------------
+
+using Setter = std::string (*)(SceneDef&, const toml::node&);
+struct KeySpec {
+  const char* section;
+  const char* key;
+  Setter set;
+};
+
+const KeySpec kKeys[] = {
+    {"mesh", "side", [](SceneDef& s, const toml::node& n) { return set_double(n, s.side); }},
+    {"mesh", "n_seg", [](SceneDef& s, const toml::node& n) { return set_int(n, s.n_seg, 1, 1024); }},
+    {"mesh", "density", [](SceneDef& s, const toml::node& n) { return set_double(n, s.density); }},
+    {"mesh", "mass",
+     [](SceneDef& s, const toml::node& n) {
+       return set_enum<MassMode>(n, s.mass, mass_from_name, "\"uniform\", \"lumped\"");
+     }},
+    {"mesh", "jitter", [](SceneDef& s, const toml::node& n) { return set_double(n, s.jitter); }},
+    {"mesh", "seed",
+     [](SceneDef& s, const toml::node& n) {
+       long long v = 0;
+       if (auto r = read_int(n, v); !r.empty()) return r;
+       if (v < 0) return std::string("must be >= 0");
+       s.seed = static_cast<std::uint64_t>(v);
+       return std::string();
+     }},
+    {"material", "model",
+     [](SceneDef& s, const toml::node& n) {
+       return set_enum<Model>(n, s.model, model_from_name,
+                              "\"neo-hookean\", \"linear\", \"arap\", \"stable-neo-hookean\"");
+     }},
+    // E, nu, mu, lambda are handled together by set_material.
+    {"material", "E", nullptr},
+    {"material", "nu", nullptr},
+    {"material", "mu", nullptr},
+    {"material", "lambda", nullptr},
+    {"time", "h", [](SceneDef& s, const toml::node& n) { return set_double(n, s.h); }},
+    {"time", "tol", [](SceneDef& s, const toml::node& n) { return set_double(n, s.tol); }},
+    {"time", "max_newton",
+     [](SceneDef& s, const toml::node& n) { return set_int(n, s.max_newton, 1, 100000); }},
+    {"solver", "projection",
+     [](SceneDef& s, const toml::node& n) {
+       return set_enum<HessianProjection>(n, s.projection, projection_from_name,
+                                          "\"diagonal\", \"full\", \"none\"");
+     }},
+    {"solver", "inversion_filter",
+     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.inversion_filter); }},
+    {"solver", "integrator",
+     [](SceneDef& s, const toml::node& n) {
+       return set_enum<Integrator>(n, s.integrator, integrator_from_name,
+                                   "\"implicit-euler\", \"symplectic-euler\"");
+     }},
+    {"initial", "velocity",
+     [](SceneDef& s, const toml::node& n) { return read_vec2(n, s.initial_velocity); }},
+    {"gravity", "enabled", [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_gravity); }},
+    {"gravity", "g", [](SceneDef& s, const toml::node& n) { return read_vec2(n, s.gravity); }},
+    {"ground", "enabled", [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_ground); }},
+    {"ground", "y", [](SceneDef& s, const toml::node& n) { return set_double(n, s.ground_y); }},
+    {"ground", "friction", [](SceneDef& s, const toml::node& n) { return set_double(n, s.friction); }},
+    {"ceiling", "enabled", [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_ceiling); }},
+    {"ceiling", "y", [](SceneDef& s, const toml::node& n) { return set_double(n, s.ceiling_y); }},
+    {"ceiling", "velocity",
+     [](SceneDef& s, const toml::node& n) { return set_double(n, s.ceiling_velocity); }},
+    {"ceiling", "stop", [](SceneDef& s, const toml::node& n) { return set_double(n, s.ceiling_stop); }},
+    {"barrier", "dhat", [](SceneDef& s, const toml::node& n) { return set_double(n, s.dhat); }},
+    {"barrier", "kappa", [](SceneDef& s, const toml::node& n) { return set_double(n, s.kappa); }},
+};
+
+const char* const kSections[] = {"mesh", "material", "time", "solver", "initial",
+                                 "gravity", "ground", "ceiling", "barrier"};
+
+// Sections whose presence switches a term on.
+bool* term_flag(SceneDef& s, std::string_view section) {
+  if (section == "gravity") return &s.has_gravity;
+  if (section == "ground") return &s.has_ground;
+  if (section == "ceiling") return &s.has_ceiling;
+  return nullptr;
+}
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const size_t d = edit_distance(word, c);
+    if (d < best_d) best_d = d, best = c;
+  }
+  return best.empty() ? "" : " (did you mean \"" + best + "\"?)";
+}
+
+std::vector<std::string> keys_of(std::string_view section) {
+  std::vector<std::string> out;
+  for (const auto& k : kKeys)
+    if (section == k.section) out.emplace_back(k.key);
+  return out;
+}
+
+const KeySpec* find_key(std::string_view section, std::string_view key) {
+  for (const auto& k : kKeys)
+    if (section == k.section && key == k.key) return &k;
+  return nullptr;
+}
+
+bool is_section(std::string_view s) {
+  return std::find(std::begin(kSections), std::end(kSections), s) != std::end(kSections);
+}
+
+std::string unknown_section_error(std::string_view section) {
+  return "unknown section" + did_you_mean(section, {std::begin(kSections), std::end(kSections)});
+}
+
+struct MaterialInput {
+  std::optional<double> E, nu, mu, lambda;
+};
+
+// Applies E/nu or mu/lambda; a value given alone keeps the other of its pair.
+// Returns "" or "key: reason".
+std::string set_material(SceneDef& s, const MaterialInput& in) {
+  if ((in.E || in.nu) && (in.mu || in.lambda))
+    return std::string(in.E ? "material.E" : "material.nu") +
+           ": give either E and nu or mu and lambda, not both";
+  if (in.E && !(*in.E > 0.0)) return "material.E: must be > 0";
+  if (in.nu && !(*in.nu >= 0.0 && *in.nu < 0.5)) return "material.nu: must be in [0, 0.5)";
+  if (in.mu && !(*in.mu > 0.0)) return "material.mu: must be > 0";
+  if (in.lambda && !(*in.lambda >= 0.0)) return "material.lambda: must be >= 0";
+  if (in.E || in.nu) {
+    double E = 0.0, nu = 0.0;
+    young_poisson_from_lame(s.lame, &E, &nu);
+    s.lame = lame_from_young_poisson(in.E.value_or(E), in.nu.value_or(nu));
+  } else {
+    if (in.mu) s.lame.mu = *in.mu;
+    if (in.lambda) s.lame.lambda = *in.lambda;
+  }
+  return "";
+}
+
+// Applies one key (already known to exist). Returns "" or a reason.
+std::string apply_key(SceneDef& s, std::string_view section, const KeySpec& spec,
+                      const toml::node& value, MaterialInput* material) {
+  if (bool* flag = term_flag(s, section); flag && std::string_view(spec.key) != "enabled") *flag = true;
+  if (spec.set) return spec.set(s, value);
+  double v = 0.0;
+  if (auto r = read_number(value, v); !r.empty()) return r;
+  const std::string_view k = spec.key;
+  (k == "E" ? material->E : k == "nu" ? material->nu : k == "mu" ? material->mu : material->lambda) = v;
+  return "";
+}
+
+std::string located(const std::string& source, int line, const std::string& what) {
+  return line > 0 ? source + ":" + std::to_string(line) + ": " + what : source + ": " + what;
+}
+
+}  // namespace
+
+SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
+  SceneLoad out;
+  if (text.find('\0') != std::string_view::npos) {
+    out.error = source + ": not a text file (it contains NUL bytes)";
+    return out;
+  }
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    std::string what(e.description());
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    out.error = located(source, static_cast<int>(e.source().begin.line), "malformed TOML: " + what);
+    return out;
+  }
+  SceneDef s;
+  s.has_gravity = s.has_ground = s.has_ceiling = false;
+  {  // name defaults to the file's stem
+    std::string stem = source.substr(source.find_last_of('/') + 1);
+    s.name = stem.substr(0, stem.rfind('.'));
+  }
+  std::map<std::string, int> lines;  // "section.key" -> line, for validation errors
+  MaterialInput material;
+  int material_line = 0;
+  for (auto&& [key, node] : root) {
+    const std::string k(key.str());
+    const int line = static_cast<int>(node.source().begin.line);
+    if (k == "name") {
+      if (auto r = read_string(node, s.name); !r.empty()) return {std::nullopt, located(source, line, "name: " + r)};
+      continue;
+    }
+    if (!is_section(k)) {
+      const bool looks_like_key = !node.is_table();
+      std::string hint = did_you_mean(k, {std::begin(kSections), std::end(kSections)});
+      return {std::nullopt, located(source, line, k + ": " + (looks_like_key ? "unknown top-level key (only \"name\" and sections are allowed)" + hint : unknown_section_error(k)))};
+    }
+    const toml::table* table = node.as_table();
+    if (!table) return {std::nullopt, located(source, line, k + ": expected a [" + k + "] section, got " + type_name(node))};
+    if (bool* flag = term_flag(s, k)) *flag = true;
+    for (auto&& [sub, value] : *table) {
+      const std::string sk(sub.str());
+      const std::string full = k + "." + sk;
+      const int vline = static_cast<int>(value.source().begin.line);
+      const KeySpec* spec = find_key(k, sk);
+      if (!spec) return {std::nullopt, located(source, vline, full + ": unknown key" + did_you_mean(sk, keys_of(k)))};
+      if (auto r = apply_key(s, k, *spec, value, &material); !r.empty())
+        return {std::nullopt, located(source, vline, full + ": " + r)};
+      lines[full] = vline;
+      if (k == "material") material_line = std::max(material_line, vline);
+    }
+  }
+  if (auto r = set_material(s, material); !r.empty()) {
+    const std::string key = r.substr(0, r.find(':'));
+    return {std::nullopt, located(source, lines.count(key) ? lines[key] : material_line, r)};
+  }
+  if (auto r = validate_scene(s); !r.empty()) {
+    const std::string key = r.substr(0, r.find(':'));
+    return {std::nullopt, located(source, lines.count(key) ? lines[key] : 0, r)};
+  }
+  out.scene = std::move(s);
+  return out;
+}
+
+SceneLoad load_scene(const std::string& name_or_path) {
+  if (auto builtin = find_builtin_scene(name_or_path)) return {builtin, ""};
+  std::ifstream in(name_or_path, std::ios::binary);
+  if (!in) {
+    std::string names;
+    for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
+    return {std::nullopt, name_or_path + ": no built-in scene of that name (" + names +
+                              ") and no readable file at that path"};
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) return {std::nullopt, name_or_path + ": could not read the file"};
+  return parse_scene_toml(buffer.str(), name_or_path);
+}
+
+std::string apply_override(SceneDef& s, std::string_view assignment) {
+  const std::string where = "--set " + std::string(assignment);
+  const size_t eq = assignment.find('=');
+  if (eq == std::string_view::npos) return where + ": expected section.key=value";
+  const std::string lhs(assignment.substr(0, eq));
+  std::string rhs(assignment.substr(eq + 1));
+  const size_t dot = lhs.find('.');
+  if (dot == std::string::npos) return where + ": expected section.key=value";
+  const std::string section = lhs.substr(0, dot), key = lhs.substr(dot + 1);
+  if (!is_section(section)) return where + ": " + section + ": " + unknown_section_error(section);
+  const KeySpec* spec = find_key(section, key);
+  if (!spec) return where + ": " + lhs + ": unknown key" + did_you_mean(key, keys_of(section));
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + rhs);
+  } catch (const toml::parse_error&) {
+    // Let bare words stand for strings: --set material.model=linear
+    std::string escaped;
+    for (char c : rhs) {
+      if (c == '"' || c == '\\') escaped += '\\';
+      escaped += c;
+    }
+    try {
+      parsed = toml::parse("v = \"" + escaped + "\"");
+    } catch (const toml::parse_error&) {
+      return where + ": " + lhs + ": cannot parse the value";
+    }
+  }
+  SceneDef candidate = s;
+  MaterialInput material;
+  if (auto r = apply_key(candidate, section, *spec, *parsed.get("v"), &material); !r.empty())
+    return where + ": " + lhs + ": " + r;
+  if (auto r = set_material(candidate, material); !r.empty()) return where + ": " + r;
+  if (auto r = validate_scene(candidate); !r.empty()) return where + ": " + r;
+  s = std::move(candidate);
+  return "";
+}
+
+std::string scene_to_toml(const SceneDef& s) {
+  std::ostringstream o;
+  o.precision(17);
+  auto vec = [](const Vec2& v) {
+    std::ostringstream t;
+    t.precision(17);
+    t << "[" << v.x() << ", " << v.y() << "]";
+    return t.str();
+  };
+  o << "name = \"" << s.name << "\"\n\n";
+  o << "[mesh]\nside = " << s.side << "\nn_seg = " << s.n_seg << "\ndensity = " << s.density
+    << "\nmass = \"" << (s.mass == MassMode::Uniform ? "uniform" : "lumped") << "\"\n";
+  if (s.jitter > 0.0) o << "jitter = " << s.jitter << "\nseed = " << s.seed << "\n";
+  o << "\n[material]\nmodel = \"" << model_name(s.model) << "\"\nmu = " << s.lame.mu
+    << "\nlambda = " << s.lame.lambda << "\n";
+  o << "\n[time]\nh = " << s.h << "\ntol = " << s.tol << "\nmax_newton = " << s.max_newton << "\n";
+  o << "\n[solver]\nprojection = \"" << projection_name(s.projection) << "\"\ninversion_filter = "
+    << (s.inversion_filter ? "true" : "false") << "\nintegrator = \"" << integrator_name(s.integrator)
+    << "\"\n";
+  if (!s.initial_velocity.isZero()) o << "\n[initial]\nvelocity = " << vec(s.initial_velocity) << "\n";
+  if (s.has_gravity) o << "\n[gravity]\ng = " << vec(s.gravity) << "\n";
+  if (s.has_ground) o << "\n[ground]\ny = " << s.ground_y << "\nfriction = " << s.friction << "\n";
+  if (s.has_ceiling)
+    o << "\n[ceiling]\ny = " << s.ceiling_y << "\nvelocity = " << s.ceiling_velocity
+      << "\nstop = " << s.ceiling_stop << "\n";
+  if (s.has_contact()) o << "\n[barrier]\ndhat = " << s.dhat << "\nkappa = " << s.kappa << "\n";
+  return o.str();
+}
+
+}  // namespace invfree
