@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages invfree needs (only those missing). Run as root or
+# through sudo. Everything comes from Debian's archive; nothing is downloaded at build time.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config git
+  libeigen3-dev libtomlplusplus-dev libcli11-dev          # core, scenes, command line
+  libgtest-dev libbenchmark-dev                           # tests, benchmarks
+  libsuitesparse-dev libopenblas0-pthread                 # CHOLMOD direct solver
+  libosmesa6-dev libglfw3-dev libimgui-dev libstb-dev     # offscreen and live rendering
+  fonts-dejavu-core                                       # text in charts
+  xvfb xauth                                              # live-mode tests without a display
+  clang libclang-rt-14-dev                                # libFuzzer target
+  ffmpeg                                                  # optional: render --mp4
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
