@@ -1,0 +1,56 @@
+#include "app/live/key_bindings.h"
+
+#include <GLFW/glfw3.h>
+
+#include <cstdio>
+
+namespace invfree::live {
+
+namespace {
+
+constexpr KeyBinding kKeys[] = {
+    {GLFW_KEY_SPACE, 0, Action::TogglePlay, "Space", "play / pause"},
+    {GLFW_KEY_S, 0, Action::Step, "S", "single step (pauses)"},
+    {GLFW_KEY_R, 0, Action::Reset, "R", "reset to the initial state (keeps the settings)"},
+    {GLFW_KEY_TAB, 0, Action::TogglePanel, "Tab", "hide / show the panel"},
+    {GLFW_KEY_F1, 0, Action::ToggleHelp, "F1", "this help"},
+    {GLFW_KEY_P, GLFW_MOD_CONTROL, Action::Screenshot, "Ctrl+P", "screenshot (numbered PNG, path printed)"},
+    {GLFW_KEY_R, GLFW_MOD_CONTROL, Action::ToggleRecord, "Ctrl+R", "start / stop recording a PNG sequence"},
+    {GLFW_KEY_F, 0, Action::FitView, "F", "fit the view to the scene"},
+    {GLFW_KEY_ESCAPE, 0, Action::Quit, "Esc", "quit"},
+};
+
+constexpr MouseBinding kMouse[] = {
+    {"left-drag a node", "pull it (a spring toward the cursor, only while dragging)"},
+    {"left/right-drag", "pan the view"},
+    {"wheel", "zoom about the cursor"},
+};
+
+}  // namespace
+
+std::span<const KeyBinding> key_bindings() { return kKeys; }
+std::span<const MouseBinding> mouse_bindings() { return kMouse; }
+
+std::optional<Action> action_for_key(int key, int mods) {
+  const int ctrl = mods & GLFW_MOD_CONTROL;
+  for (const auto& b : kKeys)
+    if (b.key == key && (b.mods & GLFW_MOD_CONTROL) == ctrl) return b.action;
+  return std::nullopt;
+}
+
+std::string help_text() {
+  std::string s = "Keys:\n";
+  char line[160];
+  for (const auto& b : kKeys) {
+    std::snprintf(line, sizeof line, "  %-8s %s\n", b.key_name, b.description);
+    s += line;
+  }
+  s += "Mouse:\n";
+  for (const auto& m : kMouse) {
+    std::snprintf(line, sizeof line, "  %-17s %s\n", m.gesture, m.description);
+    s += line;
+  }
+  return s;
+}
+
+}  // namespace invfree::live

@@ -1,0 +1,103 @@
+// The live mode's simulation controller, independent of any window: it owns the running
+// Simulation, the settings the panel edits, play/pause/step/reset, the grab spring, the
+// per-state measurements (det F per triangle, min/max, inverted count) and the short
+// histories the panel plots.
+//
+// Every settings change goes through `apply`, which validates the whole scene and hands
+// it to core update_scene(): the state is kept (so a change in the middle of a
+// compression continues from a valid state) unless the mesh definition changed, which
+// rebuilds the mesh and restarts. Switching to a model that forbids inversion while some
+// triangle is inverted is refused with a note (its energy would be infinite there).
+// A failed step (Newton cap, non-finite values, broken invariant) pauses, keeps the last
+// good state (core step() leaves it untouched) and sets `banner`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/live/stats_history.h"
+#include "core/simulation.h"
+
+namespace invfree::live {
+
+struct SceneChoice {
+  std::string label;  // built-in name or file path, as shown in the scene picker
+  SceneDef scene;     // as loaded (with the command line's --set overrides)
+};
+
+struct StateStats {
+  double min_det_f = 1.0, max_det_f = 1.0;
+  int inverted = 0;  // triangles with det F <= 0
+};
+
+class LiveController {
+ public:
+  // `scenes` must not be empty; every scene must be valid (validate_scene).
+  LiveController(std::vector<SceneChoice> scenes, int selected);
+
+  // --- playback
+  bool playing() const { return playing_; }
+  void set_playing(bool on) { playing_ = on; }
+  int steps_per_frame = 1;
+  // Advances one displayed frame: steps_per_frame steps when playing. Returns the
+  // number of steps taken (fewer when one failed).
+  int advance_frame();
+  // One step. On failure: pauses, sets `banner`, keeps the last good state; returns false.
+  bool step_once();
+  // Back to the initial state of the current settings.
+  void reset();
+
+  // --- settings
+  const SceneDef& settings() const { return sim_.scene; }
+  // Validates `next` and applies it (see the header comment). Returns true when applied;
+  // otherwise `note` says why and nothing changed.
+  bool apply(const SceneDef& next);
+  const std::vector<SceneChoice>& scenes() const { return scenes_; }
+  int selected_scene() const { return selected_; }
+  void select_scene(int index);  // loads that scene's settings and restarts
+  void restore_scene_defaults() { select_scene(selected_); }
+
+  // --- the grab spring: node `node` pulled toward `target` while dragging
+  double pull_stiffness = 2e4;  // N/m
+  void begin_pull(int node, const Vec2& target);
+  void move_pull(const Vec2& target);
+  void end_pull();
+  bool pulling() const { return pull_node_ >= 0; }
+  int pull_node() const { return pull_node_; }
+  Vec2 pull_target() const { return pull_target_; }
+
+  // --- state and measurements
+  const Simulation& simulation() const { return sim_; }
+  const std::vector<double>& det_f() const { return det_f_; }  // per triangle, current state
+  const StateStats& stats() const { return stats_; }
+  const StepReport& last_report() const { return last_report_; }
+  bool has_stepped() const { return has_report_; }
+  const StatsHistory& ms_history() const { return ms_history_; }
+  const StatsHistory& min_det_history() const { return min_det_history_; }
+  // Node closest to `p` within `radius` (world units), or -1.
+  int nearest_node(const Vec2& p, double radius) const;
+
+  // Messages for the panel: `note` explains the last clamped/refused edit or a rebuild;
+  // `banner` is set while paused after a failed step.
+  std::string note;
+  std::string banner;
+
+ private:
+  void restart(const SceneDef& scene);
+  void measure();
+  void sync_pull();
+
+  std::vector<SceneChoice> scenes_;
+  int selected_ = 0;
+  Simulation sim_;
+  bool playing_ = true;
+  std::vector<double> det_f_;
+  StateStats stats_;
+  StepReport last_report_;
+  bool has_report_ = false;
+  StatsHistory ms_history_{400}, min_det_history_{400};
+  int pull_node_ = -1;
+  Vec2 pull_target_ = Vec2::Zero();
+};
+
+}  // namespace invfree::live

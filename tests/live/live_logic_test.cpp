@@ -1,0 +1,350 @@
+// The live mode's window-independent logic: parameter limits and the E/nu <-> mu/lambda
+// edits, the log slider mapping, the stats histories, the key table, output naming, and
+// the simulation controller (changes in the middle of a compression keep the state
+// valid; a failed step pauses and keeps the last good state).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <GLFW/glfw3.h>
+
+#include "app/live/key_bindings.h"
+#include "app/live/live_controller.h"
+#include "app/live/log_slider.h"
+#include "app/live/output_naming.h"
+#include "app/live/param_limits.h"
+#include "core/triangle_elasticity.h"
+
+namespace invfree::live {
+namespace {
+
+bool in_range(double v, Range r) { return v >= r.lo && v <= r.hi; }
+
+TEST(LiveParams, ClampKeepsInRangeValuesAndNotesTheOthers) {
+  Clamped c = clamp_to_range(0.01, 0.02, kTimeStepRange, "h", "s");
+  EXPECT_EQ(c.value, 0.01);
+  EXPECT_TRUE(c.note.empty());
+  c = clamp_to_range(1.0, 0.02, kTimeStepRange, "h", "s");
+  EXPECT_EQ(c.value, kTimeStepRange.hi);
+  EXPECT_NE(c.note.find("h = 1 is outside"), std::string::npos) << c.note;
+  c = clamp_to_range(-3.0, 0.02, kTimeStepRange, "h", "s");
+  EXPECT_EQ(c.value, kTimeStepRange.lo);
+  EXPECT_FALSE(c.note.empty());
+  c = clamp_to_range(std::nan(""), 0.02, kTimeStepRange, "h", "s");
+  EXPECT_EQ(c.value, 0.02);
+  EXPECT_NE(c.note.find("not applied"), std::string::npos);
+  c = clamp_to_range(INFINITY, 0.02, kTimeStepRange, "h", "s");
+  EXPECT_EQ(c.value, 0.02);
+}
+
+TEST(LiveParams, EveryMaterialEditStaysValid) {
+  const double requests[] = {-1e9, -1.0, 0.0, 1e-3, 0.3, 0.499, 0.5, 0.7, 1.0, 50.0, 1e3,
+                             3.5e4, 1e6, 1e8, 1e9, 1e12, NAN, INFINITY, -INFINITY};
+  const Lame starts[] = {lame_from_young_poisson(1e5, 0.4), {kMuRange.lo, 0.0}, {kMuRange.hi, kLambdaRange.hi},
+                         {kMuRange.lo, kLambdaRange.hi}, {kMuRange.hi, 0.0}};
+  for (const Lame& start : starts) {
+    for (double r : requests) {
+      for (const MaterialEdit& e : {edit_mu(start, r), edit_lambda(start, r), edit_young(start, r), edit_poisson(start, r)}) {
+        EXPECT_TRUE(in_range(e.lame.mu, kMuRange)) << e.lame.mu << " from request " << r;
+        EXPECT_TRUE(in_range(e.lame.lambda, kLambdaRange)) << e.lame.lambda << " from request " << r;
+        double E, nu;
+        young_poisson_from_lame(e.lame, &E, &nu);
+        EXPECT_TRUE(std::isfinite(E) && E > 0.0);
+        EXPECT_TRUE(nu >= 0.0 && nu < 0.5) << nu;
+        if (!std::isfinite(r)) {
+          EXPECT_EQ(e.lame, start);
+          EXPECT_FALSE(e.note.empty());
+        }
+      }
+    }
+  }
+}
+
+TEST(LiveParams, YoungAndPoissonEditsKeepTheOtherOne) {
+  const Lame start = lame_from_young_poisson(1e5, 0.4);
+  MaterialEdit e = edit_young(start, 2e5);
+  EXPECT_TRUE(e.note.empty()) << e.note;
+  double E, nu;
+  young_poisson_from_lame(e.lame, &E, &nu);
+  EXPECT_NEAR(E, 2e5, 1e-6);
+  EXPECT_NEAR(nu, 0.4, 1e-12);
+  EXPECT_NEAR(e.lame.mu, 2e5 / 2.8, 1e-6);
+
+  e = edit_poisson(start, 0.25);
+  EXPECT_TRUE(e.note.empty()) << e.note;
+  young_poisson_from_lame(e.lame, &E, &nu);
+  EXPECT_NEAR(E, 1e5, 1e-6);
+  EXPECT_NEAR(nu, 0.25, 1e-12);
+
+  // nu >= 0.5 is not a material: clamped just below, with a note.
+  e = edit_poisson(start, 0.5);
+  EXPECT_NE(e.note.find("nu = 0.5 is outside"), std::string::npos) << e.note;
+  young_poisson_from_lame(e.lame, &E, &nu);
+  EXPECT_NEAR(nu, kPoissonRange.hi, 1e-9);
+  EXPECT_NEAR(E, 1e5, 1e-6);
+
+  e = edit_poisson(start, 0.0);
+  EXPECT_EQ(e.lame.lambda, 0.0);
+  e = edit_mu(start, 1e10);
+  EXPECT_EQ(e.lame.mu, kMuRange.hi);
+  EXPECT_EQ(e.lame.lambda, start.lambda);
+  EXPECT_NE(e.note.find("clamped"), std::string::npos);
+  e = edit_lambda(start, -5.0);
+  EXPECT_EQ(e.lame.lambda, 0.0);
+  EXPECT_EQ(e.lame.mu, start.mu);
+}
+
+TEST(LiveParams, PoissonRangeShrinksWhenLambdaWouldLeaveItsRange) {
+  const Lame stiff = lame_from_young_poisson(2e7, 0.3);
+  const MaterialEdit e = edit_poisson(stiff, 0.49);
+  EXPECT_FALSE(e.note.empty());
+  EXPECT_LE(e.lame.lambda, kLambdaRange.hi);
+  EXPECT_GT(e.lame.lambda, 0.9 * kLambdaRange.hi);  // clamped to the edge, not far below it
+}
+
+TEST(LiveParams, CeilingStopRange) {
+  const Range r = ceiling_stop_range(-1.0, true, 0.6, 1.0);
+  EXPECT_DOUBLE_EQ(r.lo, -0.9);
+  EXPECT_DOUBLE_EQ(r.hi, 0.6);
+}
+
+TEST(LiveSlider, LogMappingRoundTripsAndIsLogarithmic) {
+  const LogSlider s{1e2, 1e8};
+  EXPECT_DOUBLE_EQ(s.value(0.0), 1e2);
+  EXPECT_NEAR(s.value(1.0), 1e8, 1e-6);
+  EXPECT_NEAR(s.value(0.5), 1e5, 1e-8);
+  for (double t = 0.0; t <= 1.0; t += 0.05) EXPECT_NEAR(s.position(s.value(t)), t, 1e-12);
+  EXPECT_EQ(s.position(1.0), 0.0);
+  EXPECT_EQ(s.position(1e12), 1.0);
+  EXPECT_EQ(s.position(std::nan("")), 0.0);
+  const LogSlider z{1e2, 1e9, true};
+  EXPECT_EQ(z.value(0.0), 0.0);
+  EXPECT_EQ(z.position(0.0), 0.0);
+  EXPECT_NEAR(z.value(1e-9), 1e2, 1e-3);
+}
+
+TEST(LiveStats, HistoryKeepsTheLastValuesOldestFirst) {
+  StatsHistory h(4);
+  EXPECT_TRUE(h.empty());
+  for (int i = 1; i <= 6; ++i) h.push(float(i));
+  EXPECT_EQ(h.size(), 4u);
+  EXPECT_EQ(h.values(), (std::vector<float>{3, 4, 5, 6}));
+  EXPECT_EQ(h.back(), 6.0f);
+  EXPECT_EQ(h.min(), 3.0f);
+  EXPECT_EQ(h.max(), 6.0f);
+  h.clear();
+  EXPECT_TRUE(h.values().empty());
+}
+
+TEST(LiveKeys, TheIssuesKeysAreBoundAndListed) {
+  EXPECT_EQ(action_for_key(GLFW_KEY_SPACE, 0), Action::TogglePlay);
+  EXPECT_EQ(action_for_key(GLFW_KEY_S, 0), Action::Step);
+  EXPECT_EQ(action_for_key(GLFW_KEY_R, 0), Action::Reset);
+  EXPECT_EQ(action_for_key(GLFW_KEY_TAB, 0), Action::TogglePanel);
+  EXPECT_EQ(action_for_key(GLFW_KEY_F1, 0), Action::ToggleHelp);
+  EXPECT_EQ(action_for_key(GLFW_KEY_P, GLFW_MOD_CONTROL), Action::Screenshot);
+  EXPECT_EQ(action_for_key(GLFW_KEY_ESCAPE, 0), Action::Quit);
+  EXPECT_EQ(action_for_key(GLFW_KEY_P, 0), std::nullopt);
+  EXPECT_EQ(action_for_key(GLFW_KEY_SPACE, GLFW_MOD_SHIFT), Action::TogglePlay);
+  std::set<std::pair<int, int>> seen;
+  const std::string help = help_text();
+  for (const auto& b : key_bindings()) {
+    EXPECT_TRUE(seen.insert({b.key, b.mods}).second) << b.key_name << " bound twice";
+    EXPECT_NE(help.find(b.key_name), std::string::npos) << b.key_name;
+    EXPECT_NE(help.find(b.description), std::string::npos);
+  }
+  for (const auto& m : mouse_bindings()) EXPECT_NE(help.find(m.gesture), std::string::npos);
+}
+
+TEST(LiveOutput, ScreenshotsAreNumberedWithoutOverwriting) {
+  const std::string dir = ::testing::TempDir() + "/live_shots_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  EXPECT_EQ(next_screenshot_path(dir), dir + "/invfree_0001.png");
+  std::ofstream(dir + "/invfree_0001.png") << "x";
+  std::ofstream(dir + "/invfree_0002.png") << "x";
+  EXPECT_EQ(next_screenshot_path(dir), dir + "/invfree_0003.png");
+  EXPECT_EQ(record_frame_path("out", 0), "out/frame_000000.png");
+  EXPECT_EQ(record_frame_path("out", 1234), "out/frame_001234.png");
+  std::filesystem::remove_all(dir);
+}
+
+// --- the controller
+
+std::vector<SceneChoice> compress_choices() {
+  std::vector<SceneChoice> c;
+  for (const auto& e : builtin_scenes()) c.push_back({e.name, e.make()});
+  return c;
+}
+
+// The state invariants the live mode promises after any edit: finite, no inversion for a
+// model that forbids it, every node strictly between ground and ceiling.
+void expect_valid_state(const LiveController& lc, const std::string& context) {
+  const Simulation& s = lc.simulation();
+  ASSERT_TRUE(s.x.allFinite() && s.v.allFinite()) << context;
+  if (!model_allows_inversion(s.scene.model)) {
+    for (double d : triangle_det_f(s)) {
+      ASSERT_GT(d, 0.0) << context;
+    }
+  }
+  for (int i = 0; i < s.mesh.node_count(); ++i) {
+    const double y = s.x[2 * i + 1];
+    if (s.scene.has_ground) {
+      ASSERT_GT(y, s.scene.ground_y) << context;
+    }
+    if (s.scene.has_ceiling) {
+      ASSERT_LT(y, s.ceiling_y) << context;
+    }
+  }
+}
+
+TEST(LiveController, EditsInTheMiddleOfACompressionKeepTheStateValid) {
+  LiveController lc(compress_choices(), 0);
+  ASSERT_EQ(lc.settings().name, "compress");
+  for (int k = 0; k < 170; ++k) ASSERT_TRUE(lc.step_once()) << lc.banner;
+  // The ceiling is pressing on the square now.
+  ASSERT_LT(lc.simulation().ceiling_y, 0.0);
+  ASSERT_LT(lc.stats().min_det_f, 0.9);
+
+  struct Edit {
+    const char* what;
+    MaterialEdit (*edit)(const Lame&, double);
+    double value;
+  };
+  // Jumps across the range the demo runs at (far stiffer squares make the penalty ceiling
+  // hit Newton's cap: that pauses with a banner, tested below).
+  const Edit edits[] = {{"mu soft", edit_mu, 1e2},          {"mu stiff", edit_mu, 3e5},
+                        {"lambda 0", edit_lambda, 0.0},     {"lambda stiff", edit_lambda, 3e6},
+                        {"nu 0.45", edit_poisson, 0.45},    {"E soft", edit_young, 1e3},
+                        {"back", edit_young, 1e5}};
+  for (const Edit& e : edits) {
+    SceneDef next = lc.settings();
+    next.lame = e.edit(next.lame, e.value).lame;
+    ASSERT_TRUE(lc.apply(next)) << lc.note;
+    EXPECT_EQ(lc.settings().lame, next.lame);
+    for (int k = 0; k < 15; ++k) {
+      lc.step_once();
+      expect_valid_state(lc, e.what);
+    }
+    EXPECT_TRUE(lc.banner.empty()) << e.what << ": " << lc.banner;
+  }
+  for (Model m : {Model::StableNeoHookean, Model::Arap, Model::Linear, Model::NeoHookean}) {
+    SceneDef next = lc.settings();
+    next.model = m;
+    const bool applied = lc.apply(next);
+    // Back to neo-Hookean is refused only while some triangle is inverted.
+    if (!applied) {
+      EXPECT_EQ(m, Model::NeoHookean);
+      EXPECT_GT(lc.stats().inverted, 0);
+      continue;
+    }
+    for (int k = 0; k < 15; ++k) {
+      lc.step_once();
+      expect_valid_state(lc, model_name(m));
+    }
+    EXPECT_TRUE(lc.banner.empty()) << model_name(m) << ": " << lc.banner;
+  }
+}
+
+TEST(LiveController, SwitchingToNeoHookeanIsRefusedWhileInverted) {
+  SceneDef soft = *find_builtin_scene("compress");
+  soft.model = Model::Linear;
+  soft.lame = {1e2, 0.0};  // far too soft for its weight: linear elasticity inverts
+  LiveController lc({{"soft", soft}}, 0);
+  for (int k = 0; k < 200 && lc.stats().inverted == 0; ++k) lc.step_once();
+  ASSERT_GT(lc.stats().inverted, 0) << "the test needs an inverted state";
+  const VecX x_before = lc.simulation().x;
+  SceneDef next = lc.settings();
+  next.model = Model::NeoHookean;
+  EXPECT_FALSE(lc.apply(next));
+  EXPECT_NE(lc.note.find("inverted"), std::string::npos) << lc.note;
+  EXPECT_EQ(lc.settings().model, Model::Linear);
+  EXPECT_EQ(lc.simulation().x, x_before);
+  lc.reset();  // from the initial state the switch is fine
+  EXPECT_TRUE(lc.apply(next)) << lc.note;
+  EXPECT_EQ(lc.settings().model, Model::NeoHookean);
+}
+
+TEST(LiveController, AFailedStepPausesAndKeepsTheLastGoodState) {
+  LiveController lc(compress_choices(), 0);
+  for (int k = 0; k < 20; ++k) ASSERT_TRUE(lc.step_once());
+  SceneDef next = lc.settings();
+  next.max_newton = 1;  // one iteration cannot meet this tolerance: the iteration cap
+  next.tol = 1e-5;
+  ASSERT_TRUE(lc.apply(next)) << lc.note;
+  lc.set_playing(true);
+  const VecX x = lc.simulation().x;
+  const long n = lc.simulation().step_count;
+  EXPECT_EQ(lc.advance_frame(), 0);
+  EXPECT_FALSE(lc.playing());
+  EXPECT_NE(lc.banner.find("failed"), std::string::npos) << lc.banner;
+  EXPECT_EQ(lc.simulation().x, x);
+  EXPECT_EQ(lc.simulation().step_count, n);
+  expect_valid_state(lc, "after failure");
+  // A setting that works lets it go on.
+  next.max_newton = 100;
+  next.tol = 1e-2;
+  ASSERT_TRUE(lc.apply(next));
+  EXPECT_TRUE(lc.step_once());
+  EXPECT_TRUE(lc.banner.empty());
+}
+
+TEST(LiveController, InvalidSettingsAreRefusedAndMeshChangesRestart) {
+  LiveController lc(compress_choices(), 0);
+  for (int k = 0; k < 5; ++k) lc.step_once();
+  SceneDef bad = lc.settings();
+  bad.h = -1.0;
+  EXPECT_FALSE(lc.apply(bad));
+  EXPECT_NE(lc.note.find("time.h"), std::string::npos) << lc.note;
+  EXPECT_EQ(lc.settings().h, 0.01);
+  EXPECT_EQ(lc.simulation().step_count, 5);
+
+  SceneDef finer = lc.settings();
+  finer.n_seg = 8;
+  EXPECT_TRUE(lc.apply(finer));
+  EXPECT_EQ(lc.simulation().mesh.node_count(), 81);
+  EXPECT_EQ(lc.simulation().step_count, 0);
+  EXPECT_TRUE(lc.ms_history().empty());
+  EXPECT_NE(lc.note.find("rebuilt"), std::string::npos);
+
+  // Reset keeps the edited settings; selecting a scene loads its own.
+  SceneDef h2 = lc.settings();
+  h2.h = 0.005;
+  ASSERT_TRUE(lc.apply(h2));
+  lc.step_once();
+  lc.reset();
+  EXPECT_EQ(lc.simulation().step_count, 0);
+  EXPECT_EQ(lc.settings().h, 0.005);
+  EXPECT_EQ(lc.settings().n_seg, 8);
+  lc.select_scene(1);
+  EXPECT_EQ(lc.settings().name, "drop");
+  EXPECT_EQ(lc.settings().n_seg, find_builtin_scene("drop")->n_seg);
+  EXPECT_FALSE(lc.settings().has_ceiling);
+}
+
+TEST(LiveController, StatsFollowTheState) {
+  LiveController lc(compress_choices(), 0);
+  EXPECT_FALSE(lc.has_stepped());
+  EXPECT_EQ(lc.det_f().size(), static_cast<size_t>(lc.simulation().mesh.triangle_count()));
+  EXPECT_NEAR(lc.stats().min_det_f, 1.0, 1e-12);
+  lc.set_playing(true);
+  lc.steps_per_frame = 3;
+  EXPECT_EQ(lc.advance_frame(), 3);
+  EXPECT_EQ(lc.ms_history().size(), 3u);
+  EXPECT_EQ(lc.min_det_history().back(), static_cast<float>(lc.stats().min_det_f));
+  const auto det = triangle_det_f(lc.simulation());
+  EXPECT_EQ(lc.det_f(), det);
+  lc.set_playing(false);
+  EXPECT_EQ(lc.advance_frame(), 0);
+  EXPECT_EQ(lc.simulation().step_count, 3);
+  const Vec2 p = lc.simulation().x.segment<2>(2 * 7);
+  EXPECT_EQ(lc.nearest_node(p + Vec2(0.01, 0.0), 0.05), 7);
+  EXPECT_EQ(lc.nearest_node(Vec2(5.0, 5.0), 0.05), -1);
+}
+
+}  // namespace
+}  // namespace invfree::live
