@@ -17,6 +17,7 @@
 #include "app/live/log_slider.h"
 #include "app/live/output_naming.h"
 #include "app/live/param_limits.h"
+#include "app/live/view_transform.h"
 #include "core/triangle_elasticity.h"
 
 namespace invfree::live {
@@ -171,6 +172,34 @@ TEST(LiveOutput, ScreenshotsAreNumberedWithoutOverwriting) {
   EXPECT_EQ(record_frame_path("out", 0), "out/frame_000000.png");
   EXPECT_EQ(record_frame_path("out", 1234), "out/frame_001234.png");
   std::filesystem::remove_all(dir);
+}
+
+TEST(LiveView, ScreenAndWorldMapsAreInverseAndZoomKeepsTheAnchor) {
+  ViewTransform v;
+  v.width = 800;
+  v.height = 600;
+  v.fit({-1.0, -1.0, 1.0, 0.6}, 200.0, 20.0);
+  // The box fits in the free area right of the inset, and is centred there.
+  const Vec2 a = v.to_screen({-1.0, -1.0}), b = v.to_screen({1.0, 0.6});
+  EXPECT_GE(a.x(), 200.0 + 20.0 - 1e-9);
+  EXPECT_LE(b.x(), 800.0 - 20.0 + 1e-9);
+  EXPECT_GE(b.y(), 20.0 - 1e-9);  // y points down on screen
+  EXPECT_LE(a.y(), 600.0 - 20.0 + 1e-9);
+  EXPECT_NEAR(0.5 * (a.x() + b.x()), 500.0, 1e-9);
+  EXPECT_NEAR(0.5 * (a.y() + b.y()), 300.0, 1e-9);
+  const Vec2 p(0.3, -0.2);
+  EXPECT_NEAR((v.to_world(v.to_screen(p)) - p).norm(), 0.0, 1e-12);
+  const Vec2 s(123.0, 456.0);
+  const Vec2 w = v.to_world(s);
+  v.zoom_at(s, 1.7);
+  EXPECT_NEAR((v.to_screen(w) - s).norm(), 0.0, 1e-9);
+  const double ppm = v.pixels_per_metre;
+  v.pan(10.0, -5.0);
+  EXPECT_NEAR((v.to_screen(w) - (s + Vec2(10.0, -5.0))).norm(), 0.0, 1e-9);
+  EXPECT_EQ(v.pixels_per_metre, ppm);
+  const WorldBox vis = v.visible();
+  EXPECT_NEAR((vis.x1 - vis.x0) * ppm, 800.0, 1e-9);
+  EXPECT_NEAR((vis.y1 - vis.y0) * ppm, 600.0, 1e-9);
 }
 
 // --- the controller
