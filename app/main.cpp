@@ -2,6 +2,8 @@
 // registers itself in commands.h.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <new>
+#include <string>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
@@ -24,8 +26,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "invfree: %s (see invfree --help)\n", e.what());
+    std::string what = e.what();  // may quote the user's text: keep the error on one line
+    for (char& c : what)
+      if (c == '\n' || c == '\r') c = ' ';
+    std::fprintf(stderr, "invfree: %s (see invfree --help)\n", what.c_str());
     return invfree::exit_code::kBadInput;
+  } catch (const std::bad_alloc&) {  // never an exception trace or an abort
+    std::fprintf(stderr, "invfree: out of memory\n");
+    return invfree::exit_code::kRunFailed;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "invfree: internal error: %s\n", e.what());
+    return invfree::exit_code::kRunFailed;
   }
   return exit_code;
 }

@@ -1,11 +1,14 @@
 // `invfree simulate`: steps a scene headlessly and writes the per-step table (--csv) and
-// the deformed mesh (--obj). Prints a one-line summary on stdout.
+// the deformed mesh (--obj). Prints a one-line summary on stdout. Every output file is
+// written atomically; Ctrl-C stops between steps and keeps what is complete (exit 130).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/interrupt.h"
 #include "app/output_files.h"
 #include "app/scene_options.h"
 #include "core/simulation.h"
@@ -19,6 +22,7 @@ struct SimulateOptions {
   int steps = 300;
   std::string obj_dir;
   std::string csv_path;
+  bool force = false;
 };
 
 std::string obj_text(const Simulation& sim) {
@@ -30,38 +34,50 @@ std::string obj_text(const Simulation& sim) {
   return o.str();
 }
 
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "invfree: %s\n", message.c_str());
+  return code;
+}
+
 int run_simulate(const SimulateOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
-  if (!scene) {
-    std::fprintf(stderr, "invfree: %s\n", error.c_str());
-    return exit_code::kBadInput;
+  if (!scene) return fail(exit_code::kBadInput, error);
+  // Check every output before the first step: a long run must not fail at its end.
+  AtomicFileWriter csv_file;
+  if (!opt.csv_path.empty()) {
+    if (auto e = check_output_file(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
+    if (auto e = csv_file.open(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
   if (!opt.obj_dir.empty()) {
-    if (auto e = prepare_output_directory(opt.obj_dir, false, true); !e.empty()) {
-      std::fprintf(stderr, "invfree: %s\n", e.c_str());
-      return exit_code::kOutputFailed;
-    }
+    bool refused = false;
+    if (auto e = prepare_output_directory(opt.obj_dir, true, opt.force, &refused); !e.empty())
+      return fail(refused ? exit_code::kBadInput : exit_code::kOutputFailed, e);
   }
-  Simulation sim = make_simulation(*scene);
-  auto write_obj = [&]() -> bool {
-    if (opt.obj_dir.empty()) return true;
-    const std::string path = opt.obj_dir + "/" + std::to_string(sim.step_count) + ".obj";
-    if (auto e = write_file_atomically(path, obj_text(sim)); !e.empty()) {
-      std::fprintf(stderr, "invfree: %s\n", e.c_str());
-      return false;
-    }
-    return true;
-  };
-  if (!write_obj()) return exit_code::kOutputFailed;
+  install_interrupt_handler();
 
+  Simulation sim = make_simulation(*scene);
+  auto write_obj = [&]() -> std::string {
+    if (opt.obj_dir.empty()) return "";
+    return write_file_atomically(opt.obj_dir + "/" + std::to_string(sim.step_count) + ".obj", obj_text(sim));
+  };
+  if (auto e = write_obj(); !e.empty()) return fail(exit_code::kOutputFailed, e);
+
+  // CSV rows go to the temporary file in chunks, so memory stays flat however long the run.
   std::ostringstream csv;
   csv.precision(10);
   csv << "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,wall_ms\n";
+  auto flush_csv = [&](bool force_flush) -> std::string {
+    if (!csv_file.is_open() || (!force_flush && csv.tellp() < (1 << 16))) return "";
+    const std::string chunk = csv.str();
+    csv.str("");
+    return csv_file.append(chunk);
+  };
+
   long total_iterations = 0;
   double total_ms = 0.0;
   StepReport failure;
-  for (int k = 0; k < opt.steps; ++k) {
+  for (int k = 0; k < opt.steps && !interrupted(); ++k) {
     const StepReport r = step(sim);
     if (r.status != StepStatus::Ok) {
       failure = r;
@@ -75,13 +91,13 @@ int run_simulate(const SimulateOptions& opt) {
     csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual << ","
         << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
         << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
-    if (!write_obj()) return exit_code::kOutputFailed;
+    if (auto e = flush_csv(false); !e.empty()) return fail(exit_code::kOutputFailed, e);
+    if (auto e = write_obj(); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
-  if (!opt.csv_path.empty()) {
-    if (auto e = write_file_atomically(opt.csv_path, csv.str()); !e.empty()) {
-      std::fprintf(stderr, "invfree: %s\n", e.c_str());
-      return exit_code::kOutputFailed;
-    }
+  // The table is complete for the steps taken, also after a failure or an interruption.
+  if (csv_file.is_open()) {
+    if (auto e = flush_csv(true); !e.empty()) return fail(exit_code::kOutputFailed, e);
+    if (auto e = csv_file.commit(); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
   const long done = sim.step_count;
   const auto det = triangle_det_f(sim);
@@ -89,11 +105,17 @@ int run_simulate(const SimulateOptions& opt) {
   std::printf("%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, det F in [%.4f, %.4f]\n",
               sim.scene.name.c_str(), done, sim.time,
               done ? double(total_iterations) / done : 0.0, done ? total_ms / done : 0.0, *lo, *hi);
+  std::fflush(stdout);
   if (failure.status != StepStatus::Ok) {
-    std::fprintf(stderr, "invfree: step %ld failed: %s: %s\n", done + 1, step_status_name(failure.status),
-                 failure.message.c_str());
-    return exit_code::kRunFailed;
+    char t[32];
+    std::snprintf(t, sizeof t, "%.4g", sim.time + sim.scene.h);
+    return fail(exit_code::kRunFailed, "step " + std::to_string(done + 1) + " failed: " +
+                                           step_status_name(failure.status) + ": " + failure.message +
+                                           " (t = " + t + " s); outputs hold steps 0.." + std::to_string(done));
   }
+  if (interrupted())
+    return fail(exit_code::kInterrupted, "interrupted after step " + std::to_string(done) +
+                                             "; outputs hold steps 0.." + std::to_string(done));
   return exit_code::kOk;
 }
 
@@ -103,13 +125,17 @@ void register_simulate_command(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand("simulate", "step a scene without drawing; write CSV and OBJ files");
   opt->scene.add_to(cmd);
-  cmd->add_option("--steps", opt->steps, "number of time steps")->capture_default_str()->check(CLI::Range(0, 100000000));
-  cmd->add_option("--obj", opt->obj_dir, "write DIR/<k>.obj after k steps (k = 0 is the initial mesh)")
+  cmd->add_option("--steps", opt->steps, "number of time steps (0 to 100000000)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000000));
+  cmd->add_option("--obj", opt->obj_dir,
+                  "write DIR/<k>.obj after k steps (k = 0 is the initial mesh); DIR must be empty or new")
       ->type_name("DIR");
   cmd->add_option("--csv", opt->csv_path,
                   "write one row per step: step,t,newton_iters,residual,energy,min_det_F,max_det_F,"
                   "min_gap,ceiling_y,wall_ms")
       ->type_name("FILE");
+  cmd->add_flag("--force", opt->force, "write into a non-empty --obj directory");
   cmd->callback([opt, &exit_code] { exit_code = run_simulate(*opt); });
 }
 

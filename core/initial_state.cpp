@@ -1,6 +1,10 @@
 #include "core/initial_state.h"
 
+#include <unistd.h>
+
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 
 namespace invfree {
 
@@ -48,6 +52,23 @@ std::string check_initial_state(const SceneDef& s) {
       return "ceiling.y: the square starts on or through the ceiling";
   }
   return "";
+}
+
+double estimated_memory_bytes(int n_seg) {
+  const double nodes = (double(n_seg) + 1.0) * (double(n_seg) + 1.0);
+  return nodes * 1024.0 * (1.0 + 0.25 * std::log2(nodes));
+}
+
+std::string check_mesh_fits_in_memory(int n_seg) {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page_size <= 0) return "";  // unknown: let the allocator decide
+  const double physical = double(pages) * double(page_size);
+  const double needed = estimated_memory_bytes(n_seg);
+  if (needed <= 0.8 * physical) return "";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%d would need about %.1f GiB, more than this machine's %.1f GiB of memory allows",
+                n_seg, needed / double(1 << 30), physical / double(1 << 30));
+  return buf;
 }
 
 }  // namespace invfree

@@ -46,9 +46,13 @@ std::optional<SceneDef> find_builtin_scene(std::string_view name) {
 
 std::string validate_scene(const SceneDef& s) {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  // Ranges first, whether or not the term that uses a value is switched on: a bad value
+  // stays bad when a later --set switches its term on, and a student learns of it at once.
   if (!positive(s.side)) return "mesh.side: must be a finite number > 0";
   if (s.n_seg < 1) return "mesh.n_seg: must be an integer >= 1";
-  if (s.n_seg > 1024) return "mesh.n_seg: at most 1024 (the mesh would not fit in memory)";
+  if (s.n_seg > kMaxSegments)
+    return "mesh.n_seg: at most " + std::to_string(kMaxSegments) + " (the mesh would not fit in memory)";
+  if (auto e = check_mesh_fits_in_memory(s.n_seg); !e.empty()) return "mesh.n_seg: " + e;
   if (!positive(s.density)) return "mesh.density: must be a finite number > 0";
   if (!(std::isfinite(s.jitter) && s.jitter >= 0.0 && s.jitter < 0.5))
     return "mesh.jitter: must be in [0, 0.5)";
@@ -59,20 +63,18 @@ std::string validate_scene(const SceneDef& s) {
   if (!positive(s.tol)) return "time.tol: must be a finite number > 0";
   if (s.max_newton < 1) return "time.max_newton: must be an integer >= 1";
   if (!s.initial_velocity.allFinite()) return "initial.velocity: must be finite";
-  if (s.has_gravity && !s.gravity.allFinite()) return "gravity.g: must be finite";
-  if (s.has_ground && !std::isfinite(s.ground_y)) return "ground.y: must be finite";
-  if (s.has_ground && !(std::isfinite(s.friction) && s.friction >= 0.0))
-    return "ground.friction: must be a finite number >= 0";
-  if (s.has_ceiling) {
-    if (!std::isfinite(s.ceiling_y)) return "ceiling.y: must be finite";
-    if (!std::isfinite(s.ceiling_velocity)) return "ceiling.velocity: must be finite";
-    if (!std::isfinite(s.ceiling_stop)) return "ceiling.stop: must be finite";
-    if (s.has_ground && s.ceiling_y <= s.ground_y) return "ceiling.y: must be above ground.y";
-    if (s.has_ground && s.ceiling_stop <= s.ground_y) return "ceiling.stop: must be above ground.y";
-  }
-  if (s.has_contact()) {
-    if (!positive(s.dhat)) return "barrier.dhat: must be a finite number > 0";
-    if (!positive(s.kappa)) return "barrier.kappa: must be a finite number > 0";
+  if (!s.gravity.allFinite()) return "gravity.g: must be finite";
+  if (!std::isfinite(s.ground_y)) return "ground.y: must be finite";
+  if (!(std::isfinite(s.friction) && s.friction >= 0.0)) return "ground.friction: must be a finite number >= 0";
+  if (!std::isfinite(s.ceiling_y)) return "ceiling.y: must be finite";
+  if (!std::isfinite(s.ceiling_velocity)) return "ceiling.velocity: must be finite";
+  if (!std::isfinite(s.ceiling_stop)) return "ceiling.stop: must be finite";
+  if (!positive(s.dhat)) return "barrier.dhat: must be a finite number > 0";
+  if (!positive(s.kappa)) return "barrier.kappa: must be a finite number > 0";
+  // Relations between switched-on terms.
+  if (s.has_ceiling && s.has_ground) {
+    if (s.ceiling_y <= s.ground_y) return "ceiling.y: must be above ground.y";
+    if (s.ceiling_stop <= s.ground_y) return "ceiling.stop: must be above ground.y";
   }
   return check_initial_state(s);
 }

@@ -70,6 +70,10 @@ struct SceneEntry {
 std::span<const SceneEntry> builtin_scenes();
 std::optional<SceneDef> find_builtin_scene(std::string_view name);
 
+// The largest n_seg accepted anywhere: keeps every node, DOF and sparse-matrix index well
+// inside int. Smaller meshes can still be refused by check_mesh_fits_in_memory.
+constexpr int kMaxSegments = 4096;
+
 // Checks every value's range and the initial state (no inverted triangle for a model that
 // needs det F > 0, no node on or through a plane). Returns "" when valid, otherwise
 // "key: reason" naming the offending scene key.

@@ -2,8 +2,14 @@
 
 #include <toml++/toml.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -12,6 +18,55 @@
 namespace invfree {
 
 namespace {
+
+// Scene files larger than this are certainly not scenes (the built-in ones are < 1 kB);
+// refusing them keeps `--scene /dev/zero` or a stray video from eating memory.
+constexpr std::uintmax_t kMaxSceneFileBytes = 1 << 20;
+
+// User text quoted in an error (a key, a value, a path) with control characters escaped
+// and long text cut, so every error stays one readable line.
+std::string printable(std::string_view text, size_t max_chars = 80) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (out.size() >= max_chars && (c & 0xC0) != 0x80) {  // never cut inside a UTF-8 sequence
+      out += "...";
+      break;
+    }
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
+// A user's string value in double quotes, with quotes and backslashes escaped.
+std::string quoted(std::string_view text) {
+  std::string escaped;
+  for (char c : text) {
+    if (c == '"' || c == '\\') escaped += '\\';
+    escaped += c;
+  }
+  std::string out(1, '"');  // (not "\"" + ...: GCC 12 warns falsely on that form)
+  out += printable(escaped);
+  out += '"';
+  return out;
+}
+
+bool has_control_characters(std::string_view text) {
+  return std::any_of(text.begin(), text.end(), [](char c) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    return u < 0x20 || u == 0x7f;
+  });
+}
 
 // ---- typed readers: return "" or a reason -------------------------------------------
 
@@ -87,7 +142,7 @@ std::string set_enum(const toml::node& n, Enum& field, std::optional<Enum> (*par
   std::string s;
   if (auto r = read_string(n, s); !r.empty()) return r;
   auto v = parse(s);
-  if (!v) return "unknown value \"" + s + "\" (expected one of " + choices + ")";
+  if (!v) return "unknown value " + quoted(s) + " (expected one of " + choices + ")";
   field = *v;
   return "";
 }
@@ -109,7 +164,7 @@ struct KeySpec {
 
 const KeySpec kKeys[] = {
     {"mesh", "side", [](SceneDef& s, const toml::node& n) { return set_double(n, s.side); }},
-    {"mesh", "n_seg", [](SceneDef& s, const toml::node& n) { return set_int(n, s.n_seg, 1, 1024); }},
+    {"mesh", "n_seg", [](SceneDef& s, const toml::node& n) { return set_int(n, s.n_seg, 1, kMaxSegments); }},
     {"mesh", "density", [](SceneDef& s, const toml::node& n) { return set_double(n, s.density); }},
     {"mesh", "mass",
      [](SceneDef& s, const toml::node& n) {
@@ -222,7 +277,8 @@ bool is_section(std::string_view s) {
 }
 
 std::string unknown_section_error(std::string_view section) {
-  return "unknown section" + did_you_mean(section, {std::begin(kSections), std::end(kSections)});
+  return "unknown section" + did_you_mean(section, {std::begin(kSections), std::end(kSections)}) +
+         " (sections: mesh, material, time, solver, initial, gravity, ground, ceiling, barrier)";
 }
 
 struct MaterialInput {
@@ -243,6 +299,8 @@ std::string set_material(SceneDef& s, const MaterialInput& in) {
     double E = 0.0, nu = 0.0;
     young_poisson_from_lame(s.lame, &E, &nu);
     s.lame = lame_from_young_poisson(in.E.value_or(E), in.nu.value_or(nu));
+    if (!std::isfinite(s.lame.mu) || !std::isfinite(s.lame.lambda))
+      return std::string(in.E ? "material.E" : "material.nu") + ": too large (mu and lambda must be finite)";
   } else {
     if (in.mu) s.lame.mu = *in.mu;
     if (in.lambda) s.lame.lambda = *in.lambda;
@@ -263,7 +321,8 @@ std::string apply_key(SceneDef& s, std::string_view section, const KeySpec& spec
 }
 
 std::string located(const std::string& source, int line, const std::string& what) {
-  return line > 0 ? source + ":" + std::to_string(line) + ": " + what : source + ": " + what;
+  const std::string where = printable(source, 200);
+  return line > 0 ? where + ":" + std::to_string(line) + ": " + what : where + ": " + what;
 }
 
 }  // namespace
@@ -271,7 +330,7 @@ std::string located(const std::string& source, int line, const std::string& what
 SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   SceneLoad out;
   if (text.find('\0') != std::string_view::npos) {
-    out.error = source + ": not a text file (it contains NUL bytes)";
+    out.error = located(source, 0, "not a text file (it contains NUL bytes)");
     return out;
   }
   toml::table root;
@@ -280,7 +339,7 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   } catch (const toml::parse_error& e) {
     std::string what(e.description());
     std::replace(what.begin(), what.end(), '\n', ' ');
-    out.error = located(source, static_cast<int>(e.source().begin.line), "malformed TOML: " + what);
+    out.error = located(source, static_cast<int>(e.source().begin.line), "malformed TOML: " + printable(what, 200));
     return out;
   }
   SceneDef s;
@@ -297,19 +356,21 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     const int line = static_cast<int>(node.source().begin.line);
     if (k == "name") {
       if (auto r = read_string(node, s.name); !r.empty()) return {std::nullopt, located(source, line, "name: " + r)};
+      if (has_control_characters(s.name))
+        return {std::nullopt, located(source, line, "name: must not contain control characters")};
       continue;
     }
     if (!is_section(k)) {
       const bool looks_like_key = !node.is_table();
       std::string hint = did_you_mean(k, {std::begin(kSections), std::end(kSections)});
-      return {std::nullopt, located(source, line, k + ": " + (looks_like_key ? "unknown top-level key (only \"name\" and sections are allowed)" + hint : unknown_section_error(k)))};
+      return {std::nullopt, located(source, line, printable(k) + ": " + (looks_like_key ? "unknown top-level key (only \"name\" and sections are allowed)" + hint : unknown_section_error(k)))};
     }
     const toml::table* table = node.as_table();
     if (!table) return {std::nullopt, located(source, line, k + ": expected a [" + k + "] section, got " + type_name(node))};
     if (bool* flag = term_flag(s, k)) *flag = true;
     for (auto&& [sub, value] : *table) {
       const std::string sk(sub.str());
-      const std::string full = k + "." + sk;
+      const std::string full = k + "." + printable(sk);
       const int vline = static_cast<int>(value.source().begin.line);
       const KeySpec* spec = find_key(k, sk);
       if (!spec) return {std::nullopt, located(source, vline, full + ": unknown key" + did_you_mean(sk, keys_of(k)))};
@@ -333,21 +394,37 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
 
 SceneLoad load_scene(const std::string& name_or_path) {
   if (auto builtin = find_builtin_scene(name_or_path)) return {builtin, ""};
-  std::ifstream in(name_or_path, std::ios::binary);
-  if (!in) {
-    std::string names;
-    for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
-    return {std::nullopt, name_or_path + ": no built-in scene of that name (" + names +
-                              ") and no readable file at that path"};
+  const std::string where = printable(name_or_path, 200);
+  auto error = [&](const std::string& what) { return SceneLoad{std::nullopt, where + ": " + what}; };
+  struct stat st {};
+  if (::stat(name_or_path.c_str(), &st) != 0) {
+    const int err = errno;
+    if (err == ENOENT || err == ENOTDIR) {
+      std::string names;
+      for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
+      return error("no such file, and not a built-in scene (" + names + ")");
+    }
+    return error(std::string("cannot open: ") + std::strerror(err));
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) return {std::nullopt, name_or_path + ": could not read the file"};
-  return parse_scene_toml(buffer.str(), name_or_path);
+  if (S_ISDIR(st.st_mode)) return error("is a directory, not a scene file");
+  if (!S_ISREG(st.st_mode)) return error("not a regular file");
+  if (static_cast<std::uintmax_t>(st.st_size) > kMaxSceneFileBytes)
+    return error("too large for a scene file (" + std::to_string(st.st_size) + " bytes, at most " +
+                 std::to_string(kMaxSceneFileBytes) + ")");
+  std::ifstream in(name_or_path, std::ios::binary);
+  if (!in) return error(std::string("cannot open: ") + std::strerror(errno));
+  std::string text;
+  // Read at most one byte past the limit: the file may have grown since stat().
+  text.resize(kMaxSceneFileBytes + 1);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) return error("could not read the file");
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (text.size() > kMaxSceneFileBytes) return error("too large for a scene file");
+  return parse_scene_toml(text, name_or_path);
 }
 
 std::string apply_override(SceneDef& s, std::string_view assignment) {
-  const std::string where = "--set " + std::string(assignment);
+  const std::string where = "--set " + printable(assignment);
   const size_t eq = assignment.find('=');
   if (eq == std::string_view::npos) return where + ": expected section.key=value";
   const std::string lhs(assignment.substr(0, eq));
@@ -355,9 +432,9 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   const size_t dot = lhs.find('.');
   if (dot == std::string::npos) return where + ": expected section.key=value";
   const std::string section = lhs.substr(0, dot), key = lhs.substr(dot + 1);
-  if (!is_section(section)) return where + ": " + section + ": " + unknown_section_error(section);
+  if (!is_section(section)) return where + ": " + printable(section) + ": " + unknown_section_error(section);
   const KeySpec* spec = find_key(section, key);
-  if (!spec) return where + ": " + lhs + ": unknown key" + did_you_mean(key, keys_of(section));
+  if (!spec) return where + ": " + printable(lhs) + ": unknown key" + did_you_mean(key, keys_of(section));
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + rhs);
@@ -374,6 +451,9 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
       return where + ": " + lhs + ": cannot parse the value";
     }
   }
+  // "v = 1\n[mesh]\nside = 2" parses, but is not one value.
+  if (parsed.size() != 1 || !parsed.get("v"))
+    return where + ": " + lhs + ": expected a single value";
   SceneDef candidate = s;
   MaterialInput material;
   if (auto r = apply_key(candidate, section, *spec, *parsed.get("v"), &material); !r.empty())
@@ -384,6 +464,33 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   return "";
 }
 
+std::vector<std::string> scene_keys() {
+  std::vector<std::string> out;
+  for (const auto& k : kKeys) out.push_back(std::string(k.section) + "." + k.key);
+  return out;
+}
+
+namespace {
+// A TOML basic string: quotes, backslashes and control characters escaped.
+std::string toml_string(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", u);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+}  // namespace
+
 std::string scene_to_toml(const SceneDef& s) {
   std::ostringstream o;
   o.precision(17);
@@ -393,7 +500,7 @@ std::string scene_to_toml(const SceneDef& s) {
     t << "[" << v.x() << ", " << v.y() << "]";
     return t.str();
   };
-  o << "name = \"" << s.name << "\"\n\n";
+  o << "name = " << toml_string(s.name) << "\n\n";
   o << "[mesh]\nside = " << s.side << "\nn_seg = " << s.n_seg << "\ndensity = " << s.density
     << "\nmass = \"" << (s.mass == MassMode::Uniform ? "uniform" : "lumped") << "\"\n";
   if (s.jitter > 0.0) o << "jitter = " << s.jitter << "\nseed = " << s.seed << "\n";

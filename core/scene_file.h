@@ -20,6 +20,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/scene.h"
 
@@ -37,6 +38,8 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source);
 // Applies "section.key=value" (value in TOML syntax, strings may be unquoted).
 // Returns "" on success, otherwise a one-line error.
 std::string apply_override(SceneDef& scene, std::string_view assignment);
+// Every "section.key" a scene file or --set accepts, in table order (tests, fuzz dictionary).
+std::vector<std::string> scene_keys();
 // Serialises a scene as a TOML file that parse_scene_toml reads back to the same scene.
 std::string scene_to_toml(const SceneDef& scene);
 
