@@ -56,6 +56,8 @@ bool LiveController::step_once() {
   }
   last_report_ = r;
   has_report_ = true;
+  ++steps_total_;
+  step_ms_total_ += r.wall_ms;
   banner.clear();
   measure();
   ms_history_.push(static_cast<float>(r.wall_ms));

@@ -73,6 +73,9 @@ class LiveController {
   const StepReport& last_report() const { return last_report_; }
   bool has_stepped() const { return has_report_; }
   const StatsHistory& ms_history() const { return ms_history_; }
+  // Every successful step since the controller was made (for the benchmark line).
+  long steps_total() const { return steps_total_; }
+  double step_ms_total() const { return step_ms_total_; }
   const StatsHistory& min_det_history() const { return min_det_history_; }
   // Node closest to `p` within `radius` (world units), or -1.
   int nearest_node(const Vec2& p, double radius) const;
@@ -96,6 +99,8 @@ class LiveController {
   StepReport last_report_;
   bool has_report_ = false;
   StatsHistory ms_history_{400}, min_det_history_{400};
+  long steps_total_ = 0;
+  double step_ms_total_ = 0.0;
   int pull_node_ = -1;
   Vec2 pull_target_ = Vec2::Zero();
 };

@@ -17,15 +17,14 @@ void ViewTransform::zoom_at(const Vec2& s, double factor) {
   center += anchor - to_world(s);
 }
 
-void ViewTransform::fit(const WorldBox& box, double left_inset, double margin) {
-  const double avail_w = std::max(width - left_inset - 2.0 * margin, 16.0);
-  const double avail_h = std::max(height - 2.0 * margin, 16.0);
+void ViewTransform::fit(const WorldBox& box, double rx, double ry, double rw, double rh) {
   const double bw = std::max(box.x1 - box.x0, 1e-6), bh = std::max(box.y1 - box.y0, 1e-6);
-  pixels_per_metre = std::clamp(std::min(avail_w / bw, avail_h / bh), kMinPixelsPerMetre, kMaxPixelsPerMetre);
-  // The box centre goes to the middle of the free area.
-  const double free_mid_x = left_inset + 0.5 * (width - left_inset);
-  center = Vec2(0.5 * (box.x0 + box.x1) - (free_mid_x - 0.5 * width) / pixels_per_metre,
-                0.5 * (box.y0 + box.y1));
+  pixels_per_metre = std::clamp(std::min(std::max(rw, 16.0) / bw, std::max(rh, 16.0) / bh), kMinPixelsPerMetre,
+                                kMaxPixelsPerMetre);
+  // The box centre goes to the middle of the rectangle.
+  const Vec2 mid(rx + 0.5 * rw, ry + 0.5 * rh);
+  center = Vec2(0.5 * (box.x0 + box.x1), 0.5 * (box.y0 + box.y1));
+  center -= to_world(mid) - center;
 }
 
 }  // namespace invfree::live

@@ -36,9 +36,9 @@ struct ViewTransform {
   }
   // Zooms by `factor` keeping the world point under screen point `s` fixed.
   void zoom_at(const Vec2& s, double factor);
-  // Shows `box` whole, centred in the part of the viewport right of `left_inset` pixels,
-  // with `margin` pixels around it.
-  void fit(const WorldBox& box, double left_inset, double margin);
+  // Shows `box` whole (the largest scale), centred in the pixel rectangle (rx, ry, rw, rh)
+  // of the viewport (top-left corner and size).
+  void fit(const WorldBox& box, double rx, double ry, double rw, double rh);
 };
 
 }  // namespace invfree::live

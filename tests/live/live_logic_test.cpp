@@ -178,14 +178,15 @@ TEST(LiveView, ScreenAndWorldMapsAreInverseAndZoomKeepsTheAnchor) {
   ViewTransform v;
   v.width = 800;
   v.height = 600;
-  v.fit({-1.0, -1.0, 1.0, 0.6}, 200.0, 20.0);
-  // The box fits in the free area right of the inset, and is centred there.
+  v.fit({-1.0, -1.0, 1.0, 0.6}, 200.0, 20.0, 560.0, 560.0);
+  // The box fits in the rectangle, touches two of its sides, and is centred in it.
   const Vec2 a = v.to_screen({-1.0, -1.0}), b = v.to_screen({1.0, 0.6});
-  EXPECT_GE(a.x(), 200.0 + 20.0 - 1e-9);
-  EXPECT_LE(b.x(), 800.0 - 20.0 + 1e-9);
+  EXPECT_GE(a.x(), 200.0 - 1e-9);
+  EXPECT_LE(b.x(), 760.0 + 1e-9);
   EXPECT_GE(b.y(), 20.0 - 1e-9);  // y points down on screen
-  EXPECT_LE(a.y(), 600.0 - 20.0 + 1e-9);
-  EXPECT_NEAR(0.5 * (a.x() + b.x()), 500.0, 1e-9);
+  EXPECT_LE(a.y(), 580.0 + 1e-9);
+  EXPECT_NEAR(b.x() - a.x(), 560.0, 1e-9);
+  EXPECT_NEAR(0.5 * (a.x() + b.x()), 480.0, 1e-9);
   EXPECT_NEAR(0.5 * (a.y() + b.y()), 300.0, 1e-9);
   const Vec2 p(0.3, -0.2);
   EXPECT_NEAR((v.to_world(v.to_screen(p)) - p).norm(), 0.0, 1e-12);
