@@ -1,0 +1,119 @@
+// Runs the invfree executable from tests: synchronously (exit code, stdout, stderr) or in
+// the background (for signals). Arguments are passed as a vector, never through a shell,
+// so paths need no quoting; `shell_prefix` (e.g. "ulimit -f 4;") runs it under bash.
+#pragma once
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace invfree::test {
+
+struct ProcessResult {
+  int code = -1;    // exit code, or -signal when killed by a signal
+  std::string out, err;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline int decode_status(int status) {
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return -WTERMSIG(status);
+  return -1000;
+}
+
+class Process {
+ public:
+  // Starts `args` (args[0] is the program) with extra "NAME=value" environment entries.
+  Process(const std::vector<std::string>& args, const std::vector<std::string>& env_extra = {},
+          const std::string& shell_prefix = "") {
+    static int counter = 0;
+    const std::string tag = ::testing::TempDir() + "/proc_" + std::to_string(::getpid()) + "_" +
+                            std::to_string(counter++);
+    out_path_ = tag + ".out";
+    err_path_ = tag + ".err";
+    std::vector<std::string> argv_s = args;
+    if (!shell_prefix.empty()) {  // bash -c 'PREFIX exec "$0" "$@"' prog args...
+      argv_s.insert(argv_s.begin(), {"/bin/bash", "-c", shell_prefix + " exec \"$0\" \"$@\""});
+    }
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::vector<std::string> env_s;
+    for (char** e = environ; *e; ++e) env_s.emplace_back(*e);
+    for (const auto& e : env_extra) env_s.push_back(e);
+    std::vector<char*> envp;
+    for (auto& e : env_s) envp.push_back(e.data());
+    envp.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, out_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    // The child must start with default signal dispositions whatever the test runner set.
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGINT);
+    sigaddset(&defaults, SIGTERM);
+    sigaddset(&defaults, SIGXFSZ);
+    posix_spawnattr_setsigdefault(&attr, &defaults);
+    sigset_t none;
+    sigemptyset(&none);
+    posix_spawnattr_setsigmask(&attr, &none);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+    if (posix_spawn(&pid_, argv[0], &actions, &attr, argv.data(), envp.data()) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attr);
+  }
+  ~Process() {
+    if (pid_ > 0 && !waited_) {
+      ::kill(pid_, SIGKILL);
+      wait();
+    }
+  }
+  pid_t pid() const { return pid_; }
+  ProcessResult wait() {
+    ProcessResult r;
+    if (pid_ <= 0) return r;
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    waited_ = true;
+    r.code = decode_status(status);
+    r.out = slurp(out_path_);
+    r.err = slurp(err_path_);
+    return r;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  bool waited_ = false;
+  std::string out_path_, err_path_;
+};
+
+inline ProcessResult run_invfree(const std::vector<std::string>& args, const std::vector<std::string>& env = {},
+                                 const std::string& shell_prefix = "") {
+  std::vector<std::string> full = {INVFREE_EXE};
+  full.insert(full.end(), args.begin(), args.end());
+  return Process(full, env, shell_prefix).wait();
+}
+
+}  // namespace invfree::test
