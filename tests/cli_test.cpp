@@ -4,10 +4,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 namespace {
 
@@ -83,6 +88,7 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("invfree: ", 0), 0u) << r.err;
   }
+  std::printf("bad inputs tried (command line, basic): %zu, all clean one-line errors\n", std::size(cases));
   EXPECT_NE(run("simulate --scene " + dir + "/bad_nu.toml").err.find("bad_nu.toml:3: material.nu"),
             std::string::npos);
 }
@@ -101,6 +107,90 @@ TEST(Cli, NewtonFailureExitsThree) {
   const CommandResult r = run("simulate --steps 3 --set time.max_newton=1 --set time.tol=1e-14");
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.err.find("step 1 failed: newton-failed"), std::string::npos) << r.err;
+}
+
+// Every kind of bad command-line value and scene path: exit code 2, one line on stderr
+// naming what is wrong, nothing on stdout (no step ran), no crash or hang.
+TEST(Cli, EveryBadCommandLineValueExitsTwo) {
+  const std::string dir = ::testing::TempDir() + "/cli_bad_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir + "/subdir");
+  { std::ofstream(dir + "/binary.toml", std::ios::binary) << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16); }
+  { std::ofstream(dir + "/malformed.toml") << "[mesh\nn_seg = 4\n"; }
+  { std::ofstream(dir + "/typo.toml") << "[mesh]\nnseg = 4\n"; }
+  { std::ofstream(dir + "/both.toml") << "[material]\nE = 1e5\nnu = 0.3\nmu = 5\n"; }
+  { std::ofstream(dir + "/through.toml") << "[ground]\ny = 0\n"; }
+  { std::ofstream(dir + "/ceiling.toml") << "[ground]\ny = -1\n[ceiling]\ny = -1.5\nstop = -2\n"; }
+  ASSERT_EQ(::mkfifo((dir + "/fifo.toml").c_str(), 0644), 0);
+  struct Case {
+    std::string args, expected;
+  };
+  const std::vector<Case> cases = {
+      {"simulate --steps -1", "--steps"},
+      {"simulate --steps 100000001", "--steps"},
+      {"simulate --steps 1e9", "--steps"},
+      {"simulate --steps 2.5", "--steps"},
+      {"simulate --steps ''", "--steps"},
+      {"simulate --steps 99999999999999999999", "--steps"},
+      {"simulate --steps", "--steps"},
+      {"simulate --scene", "--scene"},
+      {"simulate --scene ''", ": no such file, and not a built-in scene (compress, drop)"},
+      {"simulate --scene comprss", "comprss: no such file, and not a built-in scene"},
+      {"simulate --scene " + dir + "/subdir", dir + "/subdir: is a directory, not a scene file"},
+      {"simulate --scene " + dir + "/binary.toml", dir + "/binary.toml: not a text file"},
+      {"simulate --scene " + dir + "/fifo.toml", dir + "/fifo.toml: not a regular file"},
+      {"simulate --scene /dev/zero", "/dev/zero: not a regular file"},
+      {"simulate --scene /proc/self/mem", "/proc/self/mem: could not read the file"},
+      {"simulate --scene " + dir + "/malformed.toml", dir + "/malformed.toml:1: malformed TOML"},
+      {"simulate --scene " + dir + "/typo.toml", dir + "/typo.toml:2: mesh.nseg: unknown key (did you mean \"n_seg\"?)"},
+      {"simulate --scene " + dir + "/both.toml", dir + "/both.toml:2: material.E: give either E and nu or mu and lambda"},
+      {"simulate --scene " + dir + "/through.toml", dir + "/through.toml:2: ground.y: the square starts on or through"},
+      {"simulate --scene " + dir + "/ceiling.toml", dir + "/ceiling.toml:4: ceiling.y: must be above ground.y"},
+      {"simulate --set", "--set"},
+      {"simulate --set material.nu", "--set material.nu: expected section.key=value"},
+      {"simulate --set 'material.nu=0.3\nmesh.side=2'", "--set material.nu=0.3\\nmesh.side=2: material.nu: expected a single value"},
+      {"simulate --set 'mesh.n$(echo x)=1'", "unknown key"},
+      {"simulate --set time.h=-0.01", "--set time.h=-0.01: time.h: must be a finite number > 0"},
+      {"simulate --set time.h=nan", "time.h: must be a finite number"},
+      {"simulate --set mesh.n_seg=100000", "mesh.n_seg: must be between 1 and 4096"},
+      {"simulate --set ground.friction=-1", "ground.friction: must be a finite number >= 0"},
+      {"simulate --set barrier.kappa=0", "barrier.kappa: must be a finite number > 0"},
+      {"simulate --set ceiling.y=-1.2", "ceiling.y: must be above ground.y"},
+      {"simulate --set material.model=neohookean", "unknown value \"neohookean\" (expected one of"},
+      {"simulate --set gravity.g=1", "gravity.g: expected an array of two numbers"},
+      {"simulate --obj " + dir, dir + ": directory is not empty (use --force to write into it anyway)"},
+      {"simulate extra_positional", "extra_positional"},
+      {"", "subcommand"},
+      {"simulate --steps 5 --steps 6", "--steps"},
+      {"simulate --forc", "--forc"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("invfree: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << "\nexpected: " << c.expected << "\ngot: " << r.err;
+    EXPECT_EQ(r.out, "") << c.args << ": nothing may run on bad input";
+  }
+  std::printf("bad inputs tried (command line): %zu, all clean one-line errors\n", cases.size());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, StepFailureNamesTheStepAndKeepsCompleteOutput) {
+  const std::string dir = ::testing::TempDir() + "/cli_fail_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  // Newton's cap of 1 iteration with an unreachable tolerance: the first step fails.
+  const CommandResult r = run("simulate --steps 3 --set time.max_newton=1 --set time.tol=1e-14 --csv " + dir +
+                              "/run.csv --obj " + dir + "/obj");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("invfree: step 1 failed: newton-failed: Newton reached its iteration cap (1) (t = 0.01 s)"),
+            std::string::npos) << r.err;
+  // The outputs describe the steps that succeeded: the initial mesh and an empty table.
+  EXPECT_TRUE(std::filesystem::exists(dir + "/obj/0.obj"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/obj/1.obj"));
+  EXPECT_EQ(slurp(dir + "/run.csv"),
+            "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,wall_ms\n");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
