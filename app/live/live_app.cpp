@@ -1,0 +1,562 @@
+#include "app/live/live_app.h"
+
+#include <GL/glcorearb.h>
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "app/exit_codes.h"
+#include "app/live/key_bindings.h"
+#include "app/live/live_panel.h"
+#include "app/live/output_naming.h"
+#include "app/live/view_transform.h"
+#include "app/output_files.h"
+#include "app/render/frame_writer.h"
+#include "app/render/gl_api.h"
+#include "app/render/renderer.h"
+
+// The DejaVu Sans file embedded by app/plot/font.cpp (the chart font): ImGui's text uses
+// the same face as the rendered frames, with no run-time font lookup.
+extern "C" const unsigned char invfree_chart_font_begin[];
+extern "C" const unsigned char invfree_chart_font_end[];
+
+namespace invfree::live {
+
+namespace {
+
+std::string g_glfw_error;  // the last GLFW error, for one-line messages
+
+void on_glfw_error(int, const char* description) { g_glfw_error = description ? description : "unknown error"; }
+
+// GLFW is process-wide: initialised by the first window, terminated with the last.
+int g_glfw_users = 0;
+
+constexpr float kFontSize = 16.0f, kBigFontSize = 40.0f;
+constexpr double kGrabRadiusPixels = 14.0;
+constexpr int kPngCompression = 1;  // fastest zlib level: recording keeps up with the window
+
+std::string no_window_message(const std::string& reason) {
+  return "cannot open the live window (" + reason +
+         "); for pictures without a display use `invfree render`, or run `xvfb-run -a invfree live ...`";
+}
+
+// Flips GL's bottom-up RGBA rows into an Image (top row first).
+Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) {
+  Image img;
+  img.width = w;
+  img.height = h;
+  img.rgba.resize(rgba.size());
+  const size_t row = static_cast<size_t>(w) * 4;
+  for (int y = 0; y < h; ++y)
+    std::copy(rgba.begin() + static_cast<long>((h - 1 - y) * row), rgba.begin() + static_cast<long>((h - y) * row),
+              img.rgba.begin() + static_cast<long>(y * row));
+  return img;
+}
+
+}  // namespace
+
+bool display_available() {
+  const char* x = std::getenv("DISPLAY");
+  const char* w = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (w && *w);
+}
+
+struct LiveAppImpl {
+  LiveOptions options;
+  GLFWwindow* window = nullptr;
+  bool glfw_ready = false, imgui_glfw = false, imgui_gl = false;
+  render::GlApi gl;
+  std::unique_ptr<render::Renderer> renderer;
+  std::unique_ptr<LiveController> controller;
+  PanelState panel;
+  ViewTransform view;
+  bool auto_fit = true;  // refit on resize / panel toggle until the user pans or zooms
+  int fit_scene_index = -1, fit_n_seg = -1;
+  // Mouse gestures in progress.
+  enum class Drag { None, Pan, Pull } drag = Drag::None;
+  Vec2 last_mouse = Vec2::Zero();
+  // Outputs.
+  std::unique_ptr<render::FrameWriter> recorder;
+  std::string record_dir;
+  long record_frame = 0;
+  std::vector<std::string> messages;
+  long frames = 0;
+  // Frames per second over the last half second, for the panel.
+  std::chrono::steady_clock::time_point fps_start = std::chrono::steady_clock::now();
+  long fps_frames = 0;
+
+  ImGuiContext* imgui = nullptr;
+
+  // Several windows may exist (tests): each frame makes its own GL and ImGui contexts current.
+  void activate() {
+    if (window) glfwMakeContextCurrent(window);
+    if (imgui) ImGui::SetCurrentContext(imgui);
+  }
+
+  ~LiveAppImpl() {
+    activate();
+    stop_recording();
+    renderer.reset();  // needs the context
+    if (imgui_gl) ImGui_ImplOpenGL3_Shutdown();
+    if (imgui_glfw) ImGui_ImplGlfw_Shutdown();
+    if (imgui) ImGui::DestroyContext(imgui);
+    if (window) glfwDestroyWindow(window);
+    if (glfw_ready && --g_glfw_users == 0) glfwTerminate();
+  }
+
+  void say(const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+    messages.push_back(line);
+    panel.last_output = line;
+  }
+
+  // Framebuffer pixels per window coordinate (1 except on HiDPI screens).
+  double pixel_scale() const {
+    int ww = 0, wh = 0, fw = 0, fh = 0;
+    glfwGetWindowSize(window, &ww, &wh);
+    glfwGetFramebufferSize(window, &fw, &fh);
+    return ww > 0 ? double(fw) / ww : 1.0;
+  }
+
+  // The part of the frame the world shows in and is not under the panel (framebuffer px).
+  void fit_view() {
+    const render::FrameLayout& L = renderer->layout();
+    const double left = panel.visible ? panel.width * pixel_scale() : 0.0;
+    const double x0 = std::max(L.plot.x, left);
+    const double x1 = std::max(L.plot.x + L.plot.w, x0 + 50.0);
+    const render::WorldBox b = render::scene_world_box(controller->settings());
+    view.fit({b.x0, b.y0, b.x1, b.y1}, x0, L.plot.y, x1 - x0, L.plot.h);
+    fit_scene_index = controller->selected_scene();
+    fit_n_seg = controller->settings().n_seg;
+  }
+
+  void resize_if_needed() {
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window, &fw, &fh);
+    if (fw <= 0 || fh <= 0) return;  // minimised
+    if (fw != renderer->width() || fh != renderer->height()) {
+      if (const std::string e = renderer->resize(fw, fh); !e.empty()) say("invfree: live: " + e);
+      const Vec2 keep = view.center;
+      view.width = fw;
+      view.height = fh;
+      view.center = keep;
+      if (auto_fit) fit_view();
+    }
+  }
+
+  void handle_action(Action a) {
+    switch (a) {
+      case Action::TogglePlay: controller->set_playing(!controller->playing()); break;
+      case Action::Step:
+        controller->set_playing(false);
+        controller->step_once();
+        break;
+      case Action::Reset: controller->reset(); break;
+      case Action::TogglePanel:
+        panel.visible = !panel.visible;
+        if (auto_fit) fit_view();
+        break;
+      case Action::ToggleHelp: panel.show_help = !panel.show_help; break;
+      case Action::Screenshot: screenshot_requested = true; break;
+      case Action::ToggleRecord: toggle_recording(); break;
+      case Action::FitView:
+        auto_fit = true;
+        fit_view();
+        break;
+      case Action::Quit: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
+    }
+  }
+  bool screenshot_requested = false;
+  std::vector<int> injected_keys;  // held by the last injection
+
+  void handle_keys() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantCaptureKeyboard) return;  // typing into a panel field
+    for (const auto& b : key_bindings()) {
+      if (!ImGui::IsKeyPressed(b.key, false)) continue;
+      if (auto a = action_for_key(b.key, io.KeyCtrl ? GLFW_MOD_CONTROL : 0); a && *a == b.action) handle_action(*a);
+    }
+  }
+
+  // Mouse over the picture (not the panel): grab a node with the left button, pan with
+  // the left button elsewhere or with the right/middle button, zoom with the wheel.
+  void handle_mouse() {
+    const ImGuiIO& io = ImGui::GetIO();
+    const double ps = pixel_scale();
+    const Vec2 mouse(io.MousePos.x * ps, io.MousePos.y * ps);
+    const bool mouse_valid = ImGui::IsMousePosValid();
+    if (drag != Drag::None) {
+      const bool held = drag == Drag::Pull ? io.MouseDown[0] : (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
+      if (!held || !mouse_valid) {
+        if (drag == Drag::Pull) controller->end_pull();
+        drag = Drag::None;
+      } else if (drag == Drag::Pull) {
+        controller->move_pull(view.to_world(mouse));
+      } else {
+        view.pan(mouse.x() - last_mouse.x(), mouse.y() - last_mouse.y());
+        auto_fit = false;
+      }
+      last_mouse = mouse;
+      return;
+    }
+    if (io.WantCaptureMouse || !mouse_valid) return;
+    if (io.MouseWheel != 0.0f) {
+      view.zoom_at(mouse, std::pow(1.15, io.MouseWheel));
+      auto_fit = false;
+    }
+    if (io.MouseClicked[0]) {
+      const int node = controller->nearest_node(view.to_world(mouse), kGrabRadiusPixels * ps / view.pixels_per_metre);
+      if (node >= 0) {
+        controller->begin_pull(node, view.to_world(mouse));
+        drag = Drag::Pull;
+      } else {
+        drag = Drag::Pan;
+      }
+    } else if (io.MouseClicked[1] || io.MouseClicked[2]) {
+      drag = Drag::Pan;
+    }
+    last_mouse = mouse;
+  }
+
+  // The grab spring and the node under the cursor, drawn over the picture.
+  void draw_grab_markers() {
+    const ImGuiIO& io = ImGui::GetIO();
+    const double ps = pixel_scale();
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    const Simulation& sim = controller->simulation();
+    auto screen = [&](const Vec2& w) {
+      const Vec2 s = view.to_screen(w) / ps;
+      return ImVec2(static_cast<float>(s.x()), static_cast<float>(s.y()));
+    };
+    if (controller->pulling()) {
+      const ImVec2 a = screen(sim.x.segment<2>(2 * controller->pull_node()));
+      const ImVec2 b = screen(controller->pull_target());
+      dl->AddLine(a, b, IM_COL32(20, 20, 20, 230), 2.5f);
+      dl->AddCircleFilled(a, 5.0f, IM_COL32(250, 170, 0, 255));
+      dl->AddCircle(b, 6.0f, IM_COL32(20, 20, 20, 230), 0, 2.0f);
+      return;
+    }
+    if (drag != Drag::None || io.WantCaptureMouse || !ImGui::IsMousePosValid()) return;
+    const Vec2 mouse(io.MousePos.x * ps, io.MousePos.y * ps);
+    const int node = controller->nearest_node(view.to_world(mouse), kGrabRadiusPixels * ps / view.pixels_per_metre);
+    if (node >= 0) dl->AddCircle(screen(sim.x.segment<2>(2 * node)), 7.0f, IM_COL32(250, 170, 0, 255), 0, 2.5f);
+  }
+
+  void toggle_recording() {
+    if (recorder) {
+      stop_recording();
+      return;
+    }
+    std::string dir = options.record_dir;
+    if (dir.empty() || std::filesystem::exists(dir)) {
+      // A fresh numbered directory next to the screenshots.
+      const std::filesystem::path base = options.screenshot_dir.empty() ? "." : options.screenshot_dir;
+      for (int n = 1;; ++n) {
+        char name[40];
+        std::snprintf(name, sizeof name, "invfree_recording_%04d", n);
+        if (!std::filesystem::exists(base / name)) {
+          dir = (base / name).string();
+          break;
+        }
+      }
+    }
+    options.record_dir.clear();  // --record names only the first recording
+    start_recording(dir);
+  }
+
+  bool start_recording(const std::string& dir) {
+    if (const std::string e = prepare_output_directory(dir, true, false); !e.empty()) {
+      say("invfree: live: cannot record: " + e);
+      return false;
+    }
+    recorder = std::make_unique<render::FrameWriter>(1, kPngCompression);
+    record_dir = dir;
+    record_frame = 0;
+    panel.recording = true;
+    say("recording to " + record_frame_path(dir, 0) + " ...");
+    return true;
+  }
+
+  void stop_recording() {
+    if (!recorder) return;
+    const std::string e = recorder->finish();
+    const long n = recorder->written();
+    recorder.reset();
+    panel.recording = false;
+    if (!e.empty()) say("invfree: live: recording failed: " + e);
+    say("recorded " + std::to_string(n) + " frame(s) to " + record_dir);
+  }
+
+  Image read_window() {
+    const int w = renderer->width(), h = renderer->height();
+    std::vector<std::uint8_t> rgba(static_cast<size_t>(w) * h * 4);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.ReadBuffer(GL_BACK);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    Image img = image_from_bottom_up(rgba, w, h);
+    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;  // the window is opaque
+    return img;
+  }
+
+  void frame(const Injection* inject, Image* capture) {
+    activate();
+    glfwPollEvents();
+    resize_if_needed();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    if (inject) {
+      ImGuiIO& io = ImGui::GetIO();
+      io.MousePos = ImVec2(inject->x, inject->y);
+      for (int b = 0; b < 3; ++b) io.MouseDown[b] = inject->down[b];
+      io.MouseWheel += inject->wheel;
+      for (int k : injected_keys) io.KeysDown[k] = false;
+      injected_keys.clear();
+      for (int k : inject->keys) {
+        if (k < 0 || k >= static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) continue;
+        io.KeysDown[k] = true;
+        injected_keys.push_back(k);
+      }
+      io.KeyCtrl = inject->ctrl;
+    }
+    ImGui::NewFrame();
+    // The picture goes under everything ImGui draws. Drawing the renderer's texture as an
+    // ImGui image costs far less than glBlitFramebuffer under llvmpipe (0.5 vs 7 ms at 720p);
+    // the texture is filled below, before ImGui's draw data is rendered.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::GetBackgroundDrawList()->AddImage(
+        reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(renderer->texture())), ImVec2(0, 0), display,
+        ImVec2(0, 1), ImVec2(1, 0));
+    handle_keys();
+    handle_mouse();
+
+    const int steps = controller->advance_frame();
+
+    const PanelRequests req = draw_panel(*controller, panel);
+    if (req.screenshot) screenshot_requested = true;
+    if (req.toggle_record) toggle_recording();
+    if (req.fit_view) handle_action(Action::FitView);
+    if (req.quit) handle_action(Action::Quit);
+    // A new scene or mesh: show it whole (unless the user chose a view).
+    if (controller->selected_scene() != fit_scene_index || controller->settings().n_seg != fit_n_seg) {
+      auto_fit = true;
+      fit_view();
+    }
+    draw_help_overlay(panel);
+    const render::FrameLayout& L = renderer->layout();
+    const double ps = pixel_scale();
+    const float left = panel.visible ? panel.width : 0.0f;
+    draw_banners(*controller, panel,
+                 {std::max(left, static_cast<float>(L.plot.x / ps)), static_cast<float>(L.plot.y / ps),
+                  static_cast<float>((L.plot.x + L.plot.w) / ps), static_cast<float>((L.plot.y + L.plot.h) / ps)});
+    draw_grab_markers();
+    ImGui::Render();
+
+    // The picture: the shared renderer's frame with the live camera.
+    const render::Camera cam{view.pixels_per_metre, view.to_screen(Vec2::Zero())};
+    render::DrawOptions draw_options;
+    draw_options.camera = cam;
+    renderer->draw(render::capture_frame_state(controller->simulation()), draw_options);
+    const int w = renderer->width(), h = renderer->height();
+    if (recorder && (steps > 0 || record_frame == 0)) {
+      std::vector<std::uint8_t> rgba;
+      renderer->read_pixels(&rgba);
+      if (!recorder->submit(record_frame_path(record_dir, record_frame), w, h, std::move(rgba))) {
+        stop_recording();
+      } else {
+        ++record_frame;
+      }
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, w, h);
+    gl.ClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+    if (capture) *capture = read_window();
+    if (screenshot_requested) {
+      screenshot_requested = false;
+      const std::string path = next_screenshot_path(options.screenshot_dir);
+      if (const std::string e = write_png(path, capture ? *capture : read_window()); !e.empty())
+        say("invfree: live: screenshot failed: " + e);
+      else
+        say("screenshot: " + path);
+    }
+    glfwSwapBuffers(window);
+    ++frames;
+    ++fps_frames;
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - fps_start).count();
+    if (dt >= 0.5) {
+      char title[96];
+      std::snprintf(title, sizeof title, "invfree live: %s, %.0f frames/s", controller->settings().name.c_str(),
+                    fps_frames / dt);
+      glfwSetWindowTitle(window, title);
+      fps_frames = 0;
+      fps_start = now;
+    }
+  }
+};
+
+LiveApp::LiveApp() : impl_(std::make_unique<LiveAppImpl>()) {}
+LiveApp::~LiveApp() = default;
+
+std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string* error) {
+  if (!display_available()) {
+    *error = no_window_message("no display: DISPLAY is not set");
+    return nullptr;
+  }
+  std::unique_ptr<LiveApp> app(new LiveApp());
+  LiveAppImpl& a = *app->impl_;
+  a.options = options;
+  glfwSetErrorCallback(on_glfw_error);
+  g_glfw_error.clear();
+  if (g_glfw_users == 0 && !glfwInit()) {
+    *error = no_window_message(g_glfw_error.empty() ? "GLFW could not start" : g_glfw_error);
+    return nullptr;
+  }
+  ++g_glfw_users;
+  a.glfw_ready = true;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  a.window = glfwCreateWindow(options.width, options.height, "invfree live", nullptr, nullptr);
+  if (!a.window) {
+    *error = no_window_message("no OpenGL 3.3 window: " + (g_glfw_error.empty() ? std::string("unknown") : g_glfw_error));
+    return nullptr;
+  }
+  glfwMakeContextCurrent(a.window);
+  glfwSwapInterval(options.vsync ? 1 : 0);
+
+  const auto get_proc = reinterpret_cast<render::GlGetProcAddress>(glfwGetProcAddress);
+  if (std::string e = render::load_gl_api(get_proc, &a.gl); !e.empty()) {
+    *error = no_window_message(e);
+    return nullptr;
+  }
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(a.window, &fw, &fh);
+  std::string e;
+  // Multisampling only on real GPUs: Mesa's software rasterizers (llvmpipe under Xvfb)
+  // shade every sample, and 4x would cost a third of a 60 frames/s budget.
+  const char* gl_renderer = reinterpret_cast<const char*>(a.gl.GetString(GL_RENDERER));
+  const std::string renderer_name = gl_renderer ? gl_renderer : "";
+  const bool software = renderer_name.find("llvmpipe") != std::string::npos ||
+                        renderer_name.find("softpipe") != std::string::npos ||
+                        renderer_name.find("swrast") != std::string::npos;
+  a.renderer = render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, software ? 1 : 4);
+  if (!a.renderer) {
+    *error = no_window_message("the renderer could not start: " + e);
+    return nullptr;
+  }
+
+  IMGUI_CHECKVERSION();
+  a.imgui = ImGui::CreateContext();
+  ImGui::SetCurrentContext(a.imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // nothing written next to the user's files
+  io.LogFilename = nullptr;
+  ImGui::StyleColorsDark();
+  ImGui::GetStyle().FrameRounding = 3.0f;
+  // Latin, Greek (mu, lambda, nu) and a few symbols, from the embedded DejaVu Sans.
+  static ImVector<ImWchar> ranges;
+  if (ranges.empty()) {
+    ImFontGlyphRangesBuilder builder;
+    builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
+    builder.AddText("μλνσψΨΔ≤≥·×−²");
+    builder.BuildRanges(&ranges);
+  }
+  ImFontConfig cfg;
+  cfg.FontDataOwnedByAtlas = false;  // the bytes live in the executable
+  void* font_data = const_cast<unsigned char*>(invfree_chart_font_begin);
+  const int font_bytes = static_cast<int>(invfree_chart_font_end - invfree_chart_font_begin);
+  io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kFontSize, &cfg, ranges.Data);
+  a.panel.big_font = io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kBigFontSize, &cfg, ranges.Data);
+  if (!ImGui_ImplGlfw_InitForOpenGL(a.window, true)) {
+    *error = no_window_message("ImGui's GLFW backend could not start");
+    return nullptr;
+  }
+  a.imgui_glfw = true;
+  if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
+    *error = no_window_message("ImGui's OpenGL3 backend could not start");
+    return nullptr;
+  }
+  a.imgui_gl = true;
+
+  a.controller = std::make_unique<LiveController>(options.scenes, options.selected);
+  a.controller->set_playing(!options.paused);
+  a.controller->steps_per_frame = options.steps_per_frame;
+  a.panel.visible = !options.hide_panel;
+  a.panel.max_segments = options.max_segments;
+  a.view.width = a.renderer->width();
+  a.view.height = a.renderer->height();
+  a.fit_view();
+  if (!options.record_dir.empty()) {
+    const std::string dir = options.record_dir;
+    a.options.record_dir.clear();
+    if (!a.start_recording(dir)) {
+      *error = "cannot record to " + dir + " (see above)";
+      return nullptr;
+    }
+  }
+  return app;
+}
+
+void LiveApp::frame(const Injection* inject, Image* capture) { impl_->frame(inject, capture); }
+bool LiveApp::should_close() const { return glfwWindowShouldClose(impl_->window); }
+long LiveApp::frames_drawn() const { return impl_->frames; }
+LiveController& LiveApp::controller() { return *impl_->controller; }
+const std::map<std::string, WidgetRect>& LiveApp::widget_rects() const { return impl_->panel.rects; }
+const std::vector<std::string>& LiveApp::messages() const { return impl_->messages; }
+
+int run_live(const LiveOptions& options) {
+  std::string error;
+  auto app = LiveApp::create(options, &error);
+  if (!app) {
+    std::fprintf(stderr, "invfree: live: %s\n", error.c_str());
+    return exit_code::kOutputFailed;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const bool want_last = !options.screenshot_file.empty();
+  Image last;
+  for (long f = 0; !app->should_close() && (options.frames <= 0 || f < options.frames); ++f) {
+    const bool final_frame = options.frames > 0 && f + 1 == options.frames;
+    app->frame(nullptr, want_last && final_frame ? &last : nullptr);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (want_last) {
+    if (last.rgba.empty()) app->frame(nullptr, &last);  // closed early: this frame then
+    if (const std::string e = write_png(options.screenshot_file, last); !e.empty()) {
+      std::fprintf(stderr, "invfree: live: %s\n", e.c_str());
+      return exit_code::kOutputFailed;
+    }
+    std::printf("screenshot: %s\n", options.screenshot_file.c_str());
+  }
+  const LiveController& lc = app->controller();
+  if (options.bench) {
+    const long frames = app->frames_drawn();
+    const SceneDef& s = lc.settings();
+    const long steps = lc.steps_total();
+    std::printf(
+        "live bench: %ld frames in %.2f s = %.1f frames/s (scene %s, n_seg %d, h %g, %d step(s)/frame; %ld steps, "
+        "%.2f ms/step, %.2f ms/frame)\n",
+        frames, seconds, frames / seconds, s.name.c_str(), s.n_seg, s.h, lc.steps_per_frame, steps,
+        steps ? lc.step_ms_total() / steps : 0.0, 1e3 * seconds / std::max<long>(1, frames));
+  }
+  if (!lc.banner.empty()) {
+    std::fprintf(stderr, "invfree: live: %s\n", lc.banner.c_str());
+    if (options.frames > 0) return exit_code::kRunFailed;
+  }
+  return exit_code::kOk;
+}
+
+}  // namespace invfree::live

@@ -1,0 +1,98 @@
+// The live classroom window: a GLFW window showing the running simulation drawn by the
+// shared renderer (app/render/renderer.h), with a Dear ImGui panel on the left to drive
+// it (app/live/live_panel.h), keyboard shortcuts (app/live/key_bindings.h), mouse pan,
+// zoom and node grabbing, screenshots and PNG-sequence recording.
+//
+// GL: one OpenGL 3.3 core context from GLFW (GLX). The renderer loads its functions with
+// glfwGetProcAddress; ImGui draws with its OpenGL3 backend (the packaged one loads libGL
+// itself), so this code calls no gl* function directly: it reads the window through the
+// renderer's GlApi table as well.
+//
+// Input all goes through ImGui's io (mouse position and buttons, wheel, keys), so a test
+// can inject it between the backend's NewFrame and ImGui::NewFrame (see Injection), and
+// the panel and the scene see exactly what a person's mouse would do.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/live/live_controller.h"
+#include "app/plot/chart.h"
+
+namespace invfree::live {
+
+// The n_seg slider's maximum: the largest mesh that still ran at >= 30 frames/s in
+// `invfree live --bench` under Xvfb on the project's 2-core machines (README, "Live
+// classroom mode"). Larger meshes can still be loaded from a scene file or --set.
+constexpr int kDefaultMaxSegments = 64;
+
+struct LiveOptions {
+  std::vector<SceneChoice> scenes;  // the scene picker; not empty
+  int selected = 0;
+  int frames = 0;                   // > 0: run this many frames, then close
+  std::string screenshot_file;      // write the last frame here (with frames > 0)
+  std::string screenshot_dir = ".";  // Ctrl+P / the button: DIR/invfree_NNNN.png
+  std::string record_dir;           // record from the first frame on
+  bool bench = false;               // print frames/s at the end
+  bool paused = false;              // start paused
+  bool hide_panel = false;          // start with the panel hidden (Tab shows it)
+  bool vsync = true;                // off for --frames and --bench
+  int width = 1280, height = 720;
+  int steps_per_frame = 1;
+  int max_segments = kDefaultMaxSegments;
+};
+
+// Input a test substitutes for the real one in a frame: the mouse (window pixels, y
+// down) and keys held down during this frame (GLFW key codes; a key listed in one frame
+// and not the next is one press).
+struct Injection {
+  float x = 0, y = 0;
+  bool down[3] = {false, false, false};  // left, right, middle
+  float wheel = 0;
+  std::vector<int> keys;
+  bool ctrl = false;
+};
+
+// Screen rectangle of a panel widget in the last frame (window pixels).
+struct WidgetRect {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+struct LiveAppImpl;
+
+class LiveApp {
+ public:
+  // Opens the window. Returns null with a one-line *error when there is no display or no
+  // usable OpenGL 3.3 (the message suggests `invfree render` and xvfb-run).
+  static std::unique_ptr<LiveApp> create(const LiveOptions& options, std::string* error);
+  ~LiveApp();
+  LiveApp(const LiveApp&) = delete;
+  LiveApp& operator=(const LiveApp&) = delete;
+
+  // One displayed frame: input, the simulation's steps, drawing, swap. With `capture`,
+  // the window as shown (panel included) is read back before the swap.
+  void frame(const Injection* inject = nullptr, Image* capture = nullptr);
+  bool should_close() const;
+  long frames_drawn() const;
+
+  LiveController& controller();
+  // Last frame's rectangle of a named widget ("mu", "lambda", "play", ...), if drawn.
+  const std::map<std::string, WidgetRect>& widget_rects() const;
+  // Messages printed for the user (screenshot paths, recording start/stop), also kept here.
+  const std::vector<std::string>& messages() const;
+
+ private:
+  LiveApp();
+  std::unique_ptr<LiveAppImpl> impl_;
+};
+
+// `invfree live`: runs the window until closed (or for options.frames frames), writes
+// the screenshot, prints the benchmark line. Returns the process exit code.
+int run_live(const LiveOptions& options);
+
+// True when a window can plausibly be opened (DISPLAY or WAYLAND_DISPLAY is set).
+bool display_available();
+
+}  // namespace invfree::live

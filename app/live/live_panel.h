@@ -1,0 +1,49 @@
+// The live window's Dear ImGui panel: playback, scene and model pickers, the material
+// (log sliders for mu and lambda, E and nu editable beside them), solver and contact
+// settings, the grab spring, the statistics with plots of the last steps, and the output
+// buttons. Every edit goes through LiveController::apply with the limits of
+// param_limits.h; a clamped or refused edit shows its note at the top of the panel.
+// Also the F1 help overlay and the PAUSED / failure banners.
+// Inputs: the controller and the panel's own state. Output: what the window must do
+// (screenshot, record, fit the view, quit). Call between ImGui::NewFrame and ImGui::Render.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "app/live/live_app.h"
+#include "app/live/live_controller.h"
+
+struct ImFont;
+
+namespace invfree::live {
+
+struct PanelState {
+  bool visible = true;
+  bool show_help = false;
+  float width = 390.0f;  // pixels, at font scale 1
+  int max_segments = kDefaultMaxSegments;
+  int n_seg_edit = -1;   // the n_seg slider's value while it is being dragged
+  bool recording = false;
+  std::string last_output;  // e.g. "saved shots/invfree_0003.png"
+  ImFont* big_font = nullptr;  // banners
+  std::map<std::string, WidgetRect> rects;  // this frame's widget rectangles
+};
+
+struct PanelRequests {
+  bool screenshot = false;
+  bool toggle_record = false;
+  bool fit_view = false;
+  bool quit = false;
+};
+
+PanelRequests draw_panel(LiveController& lc, PanelState& ps);
+
+// Banners over the picture: PAUSED, the failed step's message, REC. `area` is the part
+// of the window the picture shows in (x0, y0, x1, y1, pixels).
+void draw_banners(const LiveController& lc, const PanelState& ps, const WidgetRect& area);
+
+// The F1 overlay listing every key and mouse gesture (key_bindings.h).
+void draw_help_overlay(PanelState& ps);
+
+}  // namespace invfree::live

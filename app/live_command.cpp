@@ -1,0 +1,135 @@
+// `invfree live`: the interactive classroom window (app/live/live_app.h). Also what plain
+// `invfree` runs when a display is available. Without a display it prints one line
+// suggesting `invfree render` or xvfb-run and exits with code 4 (the window, its output,
+// could not be opened).
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/live/key_bindings.h"
+#include "app/live/live_app.h"
+#include "core/scene_file.h"
+
+namespace invfree {
+
+namespace {
+
+struct LiveCommandOptions {
+  std::string scene = "compress";
+  std::vector<std::string> scene_files;
+  std::vector<std::string> overrides;
+  std::string size = "1280x720";
+  live::LiveOptions live;
+};
+
+// The scene picker: every built-in scene, then the files named on the command line; the
+// --scene one is selected and gets the --set overrides.
+int build_scenes(const LiveCommandOptions& opt, live::LiveOptions* out) {
+  std::vector<std::string> names;
+  for (const auto& e : builtin_scenes()) names.push_back(e.name);
+  auto add = [&](const std::string& n) {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return static_cast<int>(i);
+    names.push_back(n);
+    return static_cast<int>(names.size()) - 1;
+  };
+  for (const auto& f : opt.scene_files) add(f);
+  const int selected = add(opt.scene);
+  out->scenes.clear();
+  for (int i = 0; i < static_cast<int>(names.size()); ++i) {
+    SceneLoad load = load_scene(names[i]);
+    if (!load.scene) {
+      std::fprintf(stderr, "invfree: %s\n", load.error.c_str());
+      return exit_code::kBadInput;
+    }
+    if (i == selected) {
+      for (const auto& o : opt.overrides) {
+        if (auto e = apply_override(*load.scene, o); !e.empty()) {
+          std::fprintf(stderr, "invfree: %s\n", e.c_str());
+          return exit_code::kBadInput;
+        }
+      }
+      if (auto e = validate_scene(*load.scene); !e.empty()) {
+        std::fprintf(stderr, "invfree: %s: %s\n", names[i].c_str(), e.c_str());
+        return exit_code::kBadInput;
+      }
+    }
+    out->scenes.push_back({names[i], *load.scene});
+  }
+  out->selected = selected;
+  return exit_code::kOk;
+}
+
+int run_live_command(LiveCommandOptions& opt) {
+  int w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(opt.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 320 || h < 240 || w > 8192 || h > 8192) {
+    std::fprintf(stderr, "invfree: --size %s: expected WIDTHxHEIGHT between 320x240 and 8192x8192\n",
+                 opt.size.c_str());
+    return exit_code::kBadInput;
+  }
+  live::LiveOptions lo = opt.live;
+  lo.width = w;
+  lo.height = h;
+  if (int code = build_scenes(opt, &lo); code != exit_code::kOk) return code;
+  // Scripted runs draw as fast as they can: no waiting for the screen's refresh.
+  if (lo.frames > 0 || lo.bench) lo.vsync = false;
+  return live::run_live(lo);
+}
+
+}  // namespace
+
+void register_live_command(CLI::App& app, int& exit_code) {
+  auto opt = std::make_shared<LiveCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "live", "interactive window: the running simulation with sliders for mu and lambda (the default command "
+              "when a display is available)");
+  std::string names;
+  for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
+  cmd->add_option("--scene", opt->scene, "scene to start with: built-in (" + names + ") or a TOML scene file")
+      ->capture_default_str();
+  cmd->add_option("scene_files", opt->scene_files, "more TOML scene files for the scene picker")
+      ->type_name("FILE ...");
+  cmd->add_option("--set", opt->overrides, "override a value of the starting scene, e.g. --set material.E=1e4 (repeatable)")
+      ->type_name("SECTION.KEY=VALUE");
+  cmd->add_option("--frames", opt->live.frames, "run this many frames, then exit (0: until the window is closed)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000000));
+  cmd->add_option("--screenshot", opt->live.screenshot_file, "save the last frame (window as shown) as a PNG")
+      ->type_name("FILE");
+  cmd->add_option("--screenshot-dir", opt->live.screenshot_dir,
+                  "where Ctrl+P saves invfree_NNNN.png and Record makes invfree_recording_NNNN/")
+      ->capture_default_str()
+      ->type_name("DIR");
+  cmd->add_option("--record", opt->live.record_dir,
+                  "record from the start: DIR/frame_000000.png, ... (as `invfree render`); DIR must be empty")
+      ->type_name("DIR");
+  cmd->add_flag("--bench", opt->live.bench, "print frames per second (with the simulation running) at the end");
+  cmd->add_flag("--paused", opt->live.paused, "start paused");
+  cmd->add_flag("--no-panel", opt->live.hide_panel, "start with the panel hidden (Tab shows it)");
+  cmd->add_option("--size", opt->size, "window size")->capture_default_str()->type_name("WxH");
+  cmd->add_option("--steps-per-frame", opt->live.steps_per_frame, "time steps per displayed frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10));
+  cmd->add_option("--max-n-seg", opt->live.max_segments,
+                  "the n_seg slider's maximum (default: the largest mesh measured at >= 30 frames/s)")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 1024));
+  cmd->footer("\n" + live::help_text() +
+              "\nWithout a display: use `invfree render`, or run `xvfb-run -a invfree live ...`.");
+  cmd->callback([opt, &exit_code] { exit_code = run_live_command(*opt); });
+}
+
+int run_default_command() {
+  if (!live::display_available()) {
+    std::fprintf(stderr,
+                 "invfree: no command given; with a display it opens the live window, without one try `invfree "
+                 "simulate` or `invfree render` (see invfree --help)\n");
+    return exit_code::kBadInput;
+  }
+  LiveCommandOptions opt;
+  return run_live_command(opt);
+}
+
+}  // namespace invfree

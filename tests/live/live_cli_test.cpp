@@ -1,0 +1,89 @@
+// `invfree live` and plain `invfree` on the command line, without a display: one line
+// suggesting `invfree render` or xvfb-run and a non-zero exit, never a crash; --help
+// lists every key; bad options are bad input (exit 2).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "app/live/key_bindings.h"
+
+namespace invfree::live {
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs invfree with no display at all (DISPLAY and WAYLAND_DISPLAY removed).
+Result run_headless(const std::string& args) {
+  static int counter = 0;
+  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const std::string out = ::testing::TempDir() + "/live_cli_out_" + tag, err = ::testing::TempDir() + "/live_cli_err_" + tag;
+  const std::string cmd = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(INVFREE_EXE) + " " + args + " >" + out +
+                          " 2>" + err + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+int lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(LiveCli, WithoutADisplayOneLineAndNonZeroExit) {
+  for (const char* args : {"live", "live --frames 3 --screenshot x.png", "live --bench"}) {
+    const Result r = run_headless(args);
+    EXPECT_EQ(r.code, 4) << args;  // the window (an output) could not be opened
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("invfree render"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("xvfb-run"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  // Plain `invfree` opens the live window only when there is a display.
+  const Result plain = run_headless("");
+  EXPECT_EQ(plain.code, 2);
+  EXPECT_EQ(lines(plain.err), 1) << plain.err;
+  EXPECT_NE(plain.err.find("invfree render"), std::string::npos) << plain.err;
+}
+
+TEST(LiveCli, HelpListsEveryKey) {
+  const Result r = run_headless("live --help");
+  EXPECT_EQ(r.code, 0);
+  for (const auto& b : key_bindings()) {
+    EXPECT_NE(r.out.find(b.key_name), std::string::npos) << b.key_name;
+    EXPECT_NE(r.out.find(b.description), std::string::npos) << b.description;
+  }
+  for (const auto& m : mouse_bindings()) EXPECT_NE(r.out.find(m.gesture), std::string::npos);
+  for (const char* opt : {"--frames", "--screenshot", "--bench", "--set", "--scene", "--record"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(LiveCli, BadInputIsRejectedBeforeAnyWindow) {
+  const std::string dir = ::testing::TempDir();
+  { std::ofstream(dir + "/live_bad_nu.toml") << "[material]\nE = 1e5\nnu = 0.7\n"; }
+  const std::vector<std::string> cases = {"live --scene nosuchscene", "live --set material.nu=0.5", "live --frames -1",
+                                 "live --size 10x10", "live --size big", "live " + dir + "/live_bad_nu.toml",
+                                 "live --steps-per-frame 0"};
+  for (const std::string& args : cases) {
+    const Result r = run_headless(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace invfree::live

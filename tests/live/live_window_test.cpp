@@ -1,0 +1,222 @@
+// The live window under a real X server (Xvfb, started by xvfb-run: see
+// tests/live/CMakeLists.txt) with Mesa's software OpenGL:
+//  - `invfree live --frames N --screenshot FILE` against goldens (the rule of the
+//    offscreen goldens, tests/render/image_compare.h);
+//  - the mu slider dragged with mouse input injected into ImGui changes the simulation's
+//    mu and the picture;
+//  - grabbing a node with the mouse pulls it toward the cursor, and only while dragging;
+//  - the keyboard table drives play/pause and the panel.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <GLFW/glfw3.h>
+
+#include "app/live/live_app.h"
+#include "tests/render/image_compare.h"
+
+namespace invfree::live {
+namespace {
+
+const std::string kGoldenDir = std::string(INVFREE_SOURCE_DIR) + "/tests/live/goldens";
+
+std::string temp_dir() {
+  const std::string d = ::testing::TempDir() + "/live_window_" + std::to_string(::getpid());
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+int run(const std::string& args) {
+  const std::string cmd = std::string(INVFREE_EXE) + " " + args + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+test::RgbImage rgb(const Image& img) {
+  test::RgbImage out;
+  out.width = img.width;
+  out.height = img.height;
+  out.rgb.reserve(static_cast<size_t>(img.width) * img.height * 3);
+  for (size_t i = 0; i < img.rgba.size(); i += 4) out.rgb.insert(out.rgb.end(), {img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]});
+  return out;
+}
+
+// The golden check of one `invfree live` run.
+void expect_golden(const std::string& args, const std::string& name) {
+  const std::string png = temp_dir() + "/" + name + ".png";
+  ASSERT_EQ(run("live " + args + " --screenshot " + png), 0) << args;
+  test::RgbImage actual;
+  ASSERT_TRUE(test::load_png(png, &actual)) << png;
+  EXPECT_EQ(actual.width, 1280);
+  EXPECT_EQ(actual.height, 720);
+  const std::string e = test::check_golden(actual, name, kGoldenDir, temp_dir());
+  EXPECT_TRUE(e.empty()) << e;
+}
+
+TEST(LiveWindow, RunningCompressionMatchesGolden) {
+  // 120 frames = 1.2 s of the demo, one step per frame: the ceiling is pressing.
+  expect_golden("--scene compress --frames 120 --no-panel", "live_compress_120");
+}
+
+TEST(LiveWindow, PausedPanelMatchesGolden) {
+  // The panel, the PAUSED banner, a stiffer material from --set.
+  expect_golden("--scene compress --set material.E=3e5 --frames 3 --paused", "live_panel_paused");
+}
+
+std::unique_ptr<LiveApp> open_app(LiveOptions o) {
+  if (o.scenes.empty()) {
+    for (const auto& e : builtin_scenes()) o.scenes.push_back({e.name, e.make()});
+  }
+  o.vsync = false;
+  std::string error;
+  auto app = LiveApp::create(o, &error);
+  EXPECT_TRUE(app) << error;
+  return app;
+}
+
+long differing_pixels(const Image& a, const Image& b) {
+  const test::ImageDiff d = test::compare_images(rgb(a), rgb(b));
+  return d.same_size ? d.differing : -1;
+}
+
+TEST(LiveWindow, InjectedMouseDragsTheMuSlider) {
+  LiveOptions o;
+  o.paused = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  Image before, after;
+  app->frame(nullptr, &before);
+  ASSERT_TRUE(app->widget_rects().count("mu"));
+  const WidgetRect r = app->widget_rects().at("mu");
+  const double mu0 = app->controller().simulation().scene.lame.mu;
+  const float y = 0.5f * (r.y0 + r.y1);
+  auto at = [&](float fraction, bool down) {
+    Injection in;
+    in.x = r.x0 + fraction * (r.x1 - r.x0);
+    in.y = y;
+    in.down[0] = down;
+    return in;
+  };
+  // Hover, press, drag to the right, release: as a hand on the mouse would, frame by frame.
+  const Injection script[] = {at(0.3f, false), at(0.3f, true), at(0.6f, true), at(0.9f, true), at(0.9f, false),
+                              at(0.9f, false)};
+  for (const Injection& in : script) app->frame(&in);
+  app->frame(nullptr, &after);
+  const double mu1 = app->controller().simulation().scene.lame.mu;
+  // 90% of the way along the log scale from 1e2 to 1e7 Pa is about 3e6 Pa.
+  EXPECT_GT(mu1, 1e6) << "mu was " << mu0;
+  EXPECT_LT(mu1, 1e7);
+  EXPECT_EQ(app->controller().simulation().scene.lame.lambda, app->controller().scenes()[0].scene.lame.lambda);
+  // The picture changed: the slider, the side panel's mu, E and nu (paused: same shape).
+  EXPECT_GT(differing_pixels(before, after), 100);
+
+  // Played on, the stiffer square deforms less under gravity than the default one.
+  app->controller().set_playing(true);
+  for (int k = 0; k < 40; ++k) app->frame();
+  const double stiff_min_det = app->controller().stats().min_det_f;
+  LiveOptions o2;
+  auto soft = open_app(o2);
+  ASSERT_TRUE(soft);
+  for (int k = 0; k < 40; ++k) soft->frame();
+  EXPECT_GT(stiff_min_det, soft->controller().stats().min_det_f);
+}
+
+TEST(LiveWindow, KeysToggleThePanelAndPlayback) {
+  LiveOptions o;
+  o.paused = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  app->frame();
+  EXPECT_FALSE(app->widget_rects().empty());
+  // Clicking the Play button with the mouse starts the simulation.
+  const WidgetRect play = app->widget_rects().at("play");
+  Injection in;
+  in.x = 0.5f * (play.x0 + play.x1);
+  in.y = 0.5f * (play.y0 + play.y1);
+  app->frame(&in);
+  in.down[0] = true;
+  app->frame(&in);
+  in.down[0] = false;
+  app->frame(&in);
+  EXPECT_TRUE(app->controller().playing());
+  const long s = app->controller().simulation().step_count;
+  app->frame(&in);
+  EXPECT_EQ(app->controller().simulation().step_count, s + 1);
+}
+
+}  // namespace
+}  // namespace invfree::live
+
+namespace invfree::live {
+namespace {
+
+TEST(LiveWindow, KeyboardShortcutsAct) {
+  LiveOptions o;
+  o.screenshot_dir = temp_dir();
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  auto press = [&](int key, bool ctrl = false) {
+    Injection in;
+    in.keys = {key};
+    in.ctrl = ctrl;
+    app->frame(&in);
+    Injection up;
+    up.ctrl = ctrl;
+    app->frame(&up);
+  };
+  app->frame();
+  ASSERT_TRUE(app->controller().playing());
+  press(GLFW_KEY_SPACE);
+  EXPECT_FALSE(app->controller().playing());
+  const long s = app->controller().simulation().step_count;
+  press(GLFW_KEY_S);
+  EXPECT_EQ(app->controller().simulation().step_count, s + 1);
+  press(GLFW_KEY_R);
+  EXPECT_EQ(app->controller().simulation().step_count, 0);
+  EXPECT_FALSE(app->widget_rects().empty());
+  press(GLFW_KEY_TAB);
+  EXPECT_TRUE(app->widget_rects().empty());  // the panel is hidden
+  press(GLFW_KEY_TAB);
+  EXPECT_FALSE(app->widget_rects().empty());
+  Image plain, help;
+  app->frame(nullptr, &plain);
+  press(GLFW_KEY_F1);
+  app->frame(nullptr, &help);
+  EXPECT_GT(differing_pixels(plain, help), 2000);  // the overlay appeared
+  press(GLFW_KEY_P, true);
+  ASSERT_FALSE(app->messages().empty());
+  const std::string shot = o.screenshot_dir + "/invfree_0001.png";
+  EXPECT_EQ(app->messages().back(), "screenshot: " + shot);
+  test::RgbImage img;
+  EXPECT_TRUE(test::load_png(shot, &img));
+  press(GLFW_KEY_P);  // plain P: nothing
+  EXPECT_FALSE(std::filesystem::exists(o.screenshot_dir + "/invfree_0002.png"));
+  EXPECT_FALSE(app->should_close());
+  press(GLFW_KEY_ESCAPE);
+  EXPECT_TRUE(app->should_close());
+}
+
+TEST(LiveWindow, RecordingWritesTheRenderNaming) {
+  LiveOptions o;
+  o.record_dir = temp_dir() + "/rec";
+  std::filesystem::remove_all(o.record_dir);
+  {
+    auto app = open_app(o);
+    ASSERT_TRUE(app);
+    for (int k = 0; k < 5; ++k) app->frame();
+  }  // closing the window finishes the recording
+  for (int k = 0; k < 5; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%06d.png", k);
+    test::RgbImage img;
+    EXPECT_TRUE(test::load_png(o.record_dir + name, &img)) << name;
+    EXPECT_EQ(img.width, 1280);
+  }
+  EXPECT_FALSE(std::filesystem::exists(o.record_dir + "/frame_000005.png"));
+}
+
+}  // namespace
+}  // namespace invfree::live
