@@ -1,36 +1,90 @@
-// Direct sparse solve of the Newton system H p = -g. The symbolic analysis (fill-reducing
-// ordering and elimination tree) is done once per sparsity pattern; every Newton
-// iteration only refactorises numerically.
+// The Newton system H p = b (b = -g) on the fixed sparsity pattern of a SparseHessian.
+//
+// Backends (chosen once per pattern, see linear_solver_kind.h):
+//  - direct: Eigen's simplicial LDL^T (AMD ordering; small meshes) or CHOLMOD's supernodal
+//    LL^T (METIS nested dissection, BLAS; large meshes). The symbolic analysis is done
+//    once per pattern; a factorisation is numeric only.
+//  - PCG preconditioned by a *reused* factorisation: H changes little from one Newton
+//    iteration (and one step) to the next, so the factor of an earlier H is an excellent
+//    preconditioner and a few conjugate-gradient iterations (one sparse product and one
+//    pair of triangular solves each) replace a fresh factorisation. The factor is renewed
+//    when the iterations it saves no longer pay for one (a cost model in flops, not clock
+//    time, so runs stay bit-for-bit reproducible), and at once when PCG does not converge
+//    within the cost of a factorisation: the direct solve is always the fallback.
+//
+// Accuracy of an inexact p, and Newton's stopping test |p|_inf < threshold: PCG runs until
+// the *decision* of the test is the one the exact solution p* would give. With H = M + K,
+// K positive semi-definite (projected elasticity, barriers, friction, the ceiling), every
+// eigenvalue of H is at least `lambda_min` (the smallest node mass, or the ceiling's
+// penalty), so the error obeys |p - p*|_inf <= |p - p*|_2 <= |b - H p|_2 / lambda_min.
+// PCG stops when either
+//   |p|_inf + bound < threshold   (Newton stops, and p* would stop it too), or
+//   |p|_inf - bound >= threshold and the relative residual is below `forcing`
+//                                 (Newton continues, as with p*; an inexact Newton step), or
+//   the residual is at the level of a direct solve's rounding (relative 1e-13).
+// The bound uses the true residual b - H p (recomputed, not CG's recurrence). Every
+// direction PCG returns from a zero start is a descent direction (g.p = -p.H p* < 0 for
+// every CG iterate), so the line search and its invariants are unchanged.
+//
+// No allocation after `setup`: every buffer is sized there, CHOLMOD's workspace is
+// recycled by a size-keyed pool (core/linear_solver.cpp), and Eigen's LDL^T is called on a
+// pre-permuted matrix through its allocation-free numeric kernel.
 #pragma once
 
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <memory>
 
+#include "core/linear_solver_kind.h"
 #include "core/types.h"
 
 namespace invfree {
 
+struct LinearSolveStats {
+  int factorizations = 0;
+  int solves = 0;          // Newton systems solved
+  int pcg_iterations = 0;  // summed over those solves
+  double factor_ms = 0.0;  // numeric factorisation (including a fallback's)
+  double solve_ms = 0.0;   // triangular solves, PCG products and vector updates
+};
+
+struct SolveRequest {
+  double threshold = 0.0;   // Newton's |p|_inf stopping threshold (tol * h); 0: none
+  double lambda_min = 0.0;  // a lower bound on H's smallest eigenvalue (> 0 for PCG)
+  double forcing = 1e-2;    // relative residual for a direction that will not stop Newton
+};
+
 class LinearSolver {
  public:
-  void analyze(const Eigen::SparseMatrix<double>& pattern) {
-    ldlt_ = std::make_unique<Ldlt>();
-    ldlt_->analyzePattern(pattern);
-  }
-  bool analyzed() const { return ldlt_ != nullptr; }
-  // Returns false when the factorisation breaks down (a zero pivot).
-  bool factorize(const Eigen::SparseMatrix<double>& h) {
-    ldlt_->factorize(h);
-    return ldlt_->info() == Eigen::Success;
-  }
-  // Returns false when the solution is not finite.
-  bool solve(const VecX& rhs, VecX& out) {
-    out = ldlt_->solve(rhs);
-    return ldlt_->info() == Eigen::Success && out.allFinite();
-  }
+  LinearSolver();
+  ~LinearSolver();
+  LinearSolver(LinearSolver&&) noexcept;
+  LinearSolver& operator=(LinearSolver&&) noexcept;
+
+  // Symbolic analysis for `pattern` (full symmetric storage) and every buffer. With
+  // `positive_definite` false (an exact, possibly indefinite Hessian) auto means LDL^T.
+  void setup(const Eigen::SparseMatrix<double>& pattern, LinearSolverKind kind, bool positive_definite);
+  bool ready() const { return impl_ != nullptr; }
+  LinearSolverKind requested() const { return requested_; }
+  bool positive_definite() const { return positive_definite_; }
+  // What actually runs: "ldlt", "cholmod", "pcg+ldlt" or "pcg+cholmod".
+  const char* backend_name() const;
+
+  // Solves H x = b. Returns false when the factorisation breaks down or x is not finite.
+  bool solve(const Eigen::SparseMatrix<double>& H, const VecX& b, VecX& x, const SolveRequest& request,
+             LinearSolveStats& stats);
+  // Forgets the stored factorisation: the next solve factorises afresh.
+  void invalidate();
+
+  struct Impl;
 
  private:
-  using Ldlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
-  std::unique_ptr<Ldlt> ldlt_;  // held by pointer: Eigen's solvers are not movable
+  std::unique_ptr<Impl> impl_;
+  LinearSolverKind requested_ = LinearSolverKind::Auto;
+  bool positive_definite_ = true;
 };
+
+// Above this many unknowns the direct backend is CHOLMOD supernodal, below it Eigen's
+// simplicial LDL^T (measured crossover; see README "Performance").
+constexpr int kCholmodMinUnknowns = 12000;
 
 }  // namespace invfree

@@ -42,7 +42,10 @@ struct NeoHookean {
 
   static DiagonalHessian diagonal_hessian(const Vec2& s, const Lame& m) {
     const double J = s(0) * s(1);
-    const double lnJ = std::log(J);
+    return diagonal_hessian(s, J, std::log(J), m);
+  }
+
+  static DiagonalHessian diagonal_hessian(const Vec2& s, double J, double lnJ, const Lame& m) {
     const double inv0 = 1.0 / (s(0) * s(0)), inv1 = 1.0 / (s(1) * s(1));
     DiagonalHessian d;
     d.A(0, 0) = m.mu * (1.0 + inv0) + m.lambda * (1.0 - lnJ) * inv0;
@@ -51,6 +54,18 @@ struct NeoHookean {
     d.flip = m.mu + (m.mu - m.lambda * lnJ) / J;
     d.twist = m.mu + (m.lambda * lnJ - m.mu) / J;
     return d;
+  }
+
+  // P and dP/dF together: one determinant, one logarithm, one polar SVD.
+  static void stress_and_derivative(const Mat2& F, const Lame& m, bool project_to_psd, Mat2& P, Mat4& dPdF) {
+    const double J = determinant(F);
+    const double lnJ = std::log(J);
+    Mat2 inv_t;  // F^-T = cof(F) / J
+    inv_t << F(1, 1), -F(1, 0), -F(0, 1), F(0, 0);
+    inv_t /= J;
+    P = m.mu * (F - inv_t) + m.lambda * lnJ * inv_t;
+    const PolarSvd svd = polar_svd(F);
+    dPdF = compose_stress_derivative(svd, diagonal_hessian(svd.sigma, J, lnJ, m), project_to_psd);
   }
 
   static Mat4 stress_derivative(const Mat2& F, const Lame& m, bool project_to_psd) {

@@ -1,5 +1,7 @@
 #include "core/newton.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -23,20 +25,65 @@ bool ceiling_target_is_safe(const StepProblem& p, const VecX& z) {
 
 NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSettings& settings,
                                             NewtonWorkspace& ws, VecX& z) {
+  using Clock = std::chrono::steady_clock;
+  auto ms_since = [](Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+  };
   NewtonResult result;
   const int n = problem.node_count();
+  const int dofs = problem.dof_count();
   const PlaneFilter planes{problem.ground_on, problem.ground_y, problem.ceiling_on};
   const bool filter_inversions = settings.inversion_filter && !model_allows_inversion(problem.model);
-  double energy = ip_energy(problem, z);
+  if (ws.direction.size() != dofs) ws.direction.resize(dofs);
+  if (ws.rhs.size() != dofs) ws.rhs.resize(dofs);
+  if (ws.trial.size() != dofs) ws.trial.resize(dofs);
+
+  auto timed_energy = [&](const VecX& at) {
+    const auto t = Clock::now();
+    const double e = ip_energy(problem, at);
+    result.line_search_ms += ms_since(t);
+    ++result.energy_evaluations;
+    return e;
+  };
+
+  if (settings.predictor) {
+    const auto t = Clock::now();
+    ws.direction.head(2 * n) = problem.x_tilde - z.head(2 * n);
+    if (problem.ceiling_on) ws.direction[2 * n] = 0.0;
+    double alpha = plane_step(planes, n, z, ws.direction);
+    if (filter_inversions) alpha = std::min(alpha, inversion_free_step(*problem.mesh, z, ws.direction));
+    if (alpha > 0.0) z.head(2 * n) += alpha * ws.direction.head(2 * n);
+    result.line_search_ms += ms_since(t);
+  }
+
+  // Every eigenvalue of the projected Hessian is at least the smallest node mass, the
+  // ceiling's penalty stiffness, or 1 for the eliminated ceiling (linear_solver.h).
+  const bool psd = problem.projection != HessianProjection::None;
+  SolveRequest request;
+  request.forcing = settings.forcing;
+
+  double energy = timed_energy(z);
   for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations) {
     if (problem.ceiling_on && !problem.ceiling_fixed && ceiling_target_is_safe(problem, z)) {
       z[2 * n] = problem.ceiling_target;
       problem.ceiling_fixed = true;
-      energy = ip_energy(problem, z);
+      energy = timed_energy(z);
     }
+    auto t = Clock::now();
     ip_gradient_hessian(problem, z, ws.gradient, ws.hessian);
-    if (!ws.solver.analyzed()) ws.solver.analyze(ws.hessian.matrix);
-    if (!ws.solver.factorize(ws.hessian.matrix) || !ws.solver.solve(-ws.gradient, ws.direction)) {
+    ws.rhs = -ws.gradient;
+    result.assembly_ms += ms_since(t);
+
+    request.threshold = settings.tol * problem.h;
+    request.lambda_min = 0.0;
+    if (psd) {
+      double lambda = ws.min_node_mass;
+      if (problem.ceiling_on) lambda = std::min(lambda, problem.ceiling_fixed ? 1.0 : problem.ceiling_stiffness);
+      request.lambda_min = lambda;
+    } else {
+      request.forcing = 1e-13;  // no error bound: an iterative solve must be as exact as a direct one
+    }
+    if (!ws.solver.solve(ws.hessian.matrix, ws.rhs, ws.direction, request, result.linear)) {
       result.status = StepStatus::LinearSolveFailed;
       break;
     }
@@ -47,12 +94,14 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
         return result;
       }
       problem.ceiling_stiffness *= 2.0;  // converged short of the ceiling's target
-      energy = ip_energy(problem, z);
+      energy = timed_energy(z);
       continue;
     }
 
+    t = Clock::now();
     double alpha = plane_step(planes, n, z, ws.direction);
     if (filter_inversions) alpha = std::min(alpha, inversion_free_step(*problem.mesh, z, ws.direction));
+    result.line_search_ms += ms_since(t);
     // Near convergence the decrease a step can bring, -alpha g.p, falls below the
     // rounding noise of E itself (~1e-16 |E|); comparing energies is then meaningless and
     // backtracking would stall. There the filtered Newton step is taken as it is (the
@@ -62,7 +111,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     const double energy_noise = 64.0 * std::numeric_limits<double>::epsilon() * (std::abs(energy) + 1.0);
     if (predicted_decrease >= 0.0 && predicted_decrease < energy_noise) {
       ws.trial = z + alpha * ws.direction;
-      const double trial_energy = ip_energy(problem, ws.trial);
+      const double trial_energy = timed_energy(ws.trial);
       if (std::isfinite(trial_energy)) {
         z.swap(ws.trial);
         energy = trial_energy;
@@ -73,7 +122,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     double trial_energy;
     while (true) {
       ws.trial = z + alpha * ws.direction;
-      trial_energy = ip_energy(problem, ws.trial);
+      trial_energy = timed_energy(ws.trial);
       if (trial_energy <= energy || halvings == settings.max_halvings) break;
       alpha *= 0.5;
       ++halvings;

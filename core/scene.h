@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/linear_solver_kind.h"
 #include "core/material.h"
 #include "core/mesh.h"
 
@@ -38,6 +39,7 @@ struct SceneDef {
   HessianProjection projection = HessianProjection::Diagonal;
   bool inversion_filter = true;
   Integrator integrator = Integrator::ImplicitEuler;
+  LinearSolverKind linear_solver = LinearSolverKind::Auto;  // see core/linear_solver_kind.h
   // [initial]
   Vec2 initial_velocity = Vec2::Zero();
   // [gravity]

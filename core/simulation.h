@@ -19,6 +19,17 @@ struct StepReport {
   double energy = 0.0;   // incremental potential at the accepted state
   double wall_ms = 0.0;  // time spent in the step
   std::string message;   // empty when ok
+  // Where the step's time went (ms, steady clock; the rest of wall_ms is the warm start,
+  // the invariant checks and bookkeeping): gradient + Hessian assembly, numeric
+  // factorisations, solves (triangular solves and PCG iterations), line search (filters
+  // and energy evaluations).
+  double assembly_ms = 0.0;
+  double factor_ms = 0.0;
+  double solve_ms = 0.0;
+  double line_search_ms = 0.0;
+  int factorizations = 0;
+  int pcg_iterations = 0;
+  int energy_evaluations = 0;
 };
 
 struct Simulation {
@@ -32,9 +43,11 @@ struct Simulation {
   double ceiling_nominal = 0.0;
   double time = 0.0;
   long step_count = 0;
-  // Solver workspace (sparsity pattern and symbolic factorisation, built once per mesh).
+  // Solver workspace (sparsity pattern and symbolic factorisation, built once per mesh)
+  // and the step's scratch vectors: a step allocates nothing.
   NewtonWorkspace workspace;
   StepProblem problem;
+  VecX z, x_new, v_new;
 };
 
 // Builds a simulation from a validated scene (see validate_scene).

@@ -1,6 +1,7 @@
 #include "core/sparse_hessian.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 namespace invfree {
@@ -13,6 +14,38 @@ int find_slot(const Eigen::SparseMatrix<double>& m, int row, int col) {
   if (it == inner + end || *it != row) throw std::logic_error("sparse pattern is missing an entry");
   return static_cast<int>(it - inner);
 }
+// Greedy colouring of the triangle chunks: each chunk takes the lowest colour not used by
+// an earlier chunk sharing one of its nodes (a per-node bit mask of the colours touching
+// it). On the square mesh, chunks are strips of rows and two or three colours suffice.
+void build_assembly_plan(const Mesh& mesh, SparseHessian& h) {
+  constexpr int kChunk = 128;  // fixed: the plan must not depend on the thread count
+  const int nt = mesh.triangle_count();
+  const int chunks = (nt + kChunk - 1) / kChunk;
+  std::vector<std::uint64_t> node_colours(mesh.node_count(), 0);
+  std::vector<int> colour(chunks, 0);
+  int colours = chunks > 0 ? 1 : 0;
+  for (int k = 0; k < chunks; ++k) {
+    const int begin = k * kChunk, end = std::min(nt, begin + kChunk);
+    std::uint64_t used = 0;
+    for (int t = begin; t < end; ++t)
+      for (int v : mesh.triangles[t]) used |= node_colours[v];
+    int c = 0;
+    while (c < 64 && (used >> c) & 1u) ++c;
+    if (c == 64) throw std::logic_error("assembly plan: more than 64 colours");
+    colour[k] = c;
+    colours = std::max(colours, c + 1);
+    for (int t = begin; t < end; ++t)
+      for (int v : mesh.triangles[t]) node_colours[v] |= std::uint64_t{1} << c;
+  }
+  h.chunk_size = kChunk;
+  h.colour_begin.assign(colours + 1, 0);
+  for (int k = 0; k < chunks; ++k) ++h.colour_begin[colour[k] + 1];
+  for (int c = 0; c < colours; ++c) h.colour_begin[c + 1] += h.colour_begin[c];
+  h.chunk_order.resize(chunks);
+  std::vector<int> fill(h.colour_begin.begin(), h.colour_begin.end() - 1);
+  for (int k = 0; k < chunks; ++k) h.chunk_order[fill[colour[k]]++] = k;
+}
+
 }  // namespace
 
 SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
@@ -54,6 +87,7 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
       h.ceiling_slots[2 * i + 1] = find_slot(h.matrix, c, 2 * i + 1);
     }
   }
+  build_assembly_plan(mesh, h);
   h.set_zero();
   return h;
 }

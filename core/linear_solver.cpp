@@ -1,0 +1,442 @@
+#include "core/linear_solver.h"
+
+#include <cholmod.h>
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <vector>
+
+#include "core/parallel.h"
+
+namespace invfree {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// ---- CHOLMOD's memory: a size-keyed recycling pool -----------------------------------
+// CHOLMOD allocates its numeric workspace on every factorisation and frees it on return.
+// The sizes depend on the symbolic analysis only, so after the first factorisation every
+// request is served from blocks freed by the previous one and a step makes no call to the
+// system allocator. Blocks carry a 16-byte header with their size. The hooks are set once,
+// before the first CHOLMOD call; nothing else in the program uses CHOLMOD.
+constexpr std::size_t kHeader = 16;
+constexpr int kPoolSlots = 512;
+struct FreeBlock {
+  std::size_t size;
+  char* raw;
+};
+std::mutex g_pool_mutex;
+FreeBlock g_free[kPoolSlots];
+int g_free_count = 0;
+
+void* pool_malloc(std::size_t size) {
+  if (size == 0) size = 1;
+  {
+    std::lock_guard<std::mutex> lock(g_pool_mutex);
+    for (int k = g_free_count - 1; k >= 0; --k)
+      if (g_free[k].size == size) {
+        char* raw = g_free[k].raw;
+        g_free[k] = g_free[--g_free_count];
+        return raw + kHeader;
+      }
+  }
+  char* raw = static_cast<char*>(std::malloc(size + kHeader));
+  if (!raw) return nullptr;
+  std::memcpy(raw, &size, sizeof size);
+  return raw + kHeader;
+}
+
+void pool_free(void* p) {
+  if (!p) return;
+  char* raw = static_cast<char*>(p) - kHeader;
+  std::size_t size;
+  std::memcpy(&size, raw, sizeof size);
+  {
+    std::lock_guard<std::mutex> lock(g_pool_mutex);
+    if (g_free_count < kPoolSlots) {
+      g_free[g_free_count++] = {size, raw};
+      return;
+    }
+  }
+  std::free(raw);
+}
+
+void* pool_calloc(std::size_t n, std::size_t each) {
+  if (each != 0 && n > static_cast<std::size_t>(-1) / each) return nullptr;
+  void* p = pool_malloc(n * each);
+  if (p) std::memset(p, 0, n * each);
+  return p;
+}
+
+void* pool_realloc(void* p, std::size_t size) {
+  if (!p) return pool_malloc(size);
+  std::size_t old;
+  std::memcpy(&old, static_cast<char*>(p) - kHeader, sizeof old);
+  if (size <= old) return p;
+  void* q = pool_malloc(size);
+  if (!q) return nullptr;
+  std::memcpy(q, p, old);
+  pool_free(p);
+  return q;
+}
+
+// Releases the cached blocks (when a CHOLMOD factorisation is destroyed).
+void pool_trim() {
+  std::lock_guard<std::mutex> lock(g_pool_mutex);
+  for (int k = 0; k < g_free_count; ++k) std::free(g_free[k].raw);
+  g_free_count = 0;
+}
+
+void install_cholmod_pool() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    SuiteSparse_config.malloc_func = pool_malloc;
+    SuiteSparse_config.calloc_func = pool_calloc;
+    SuiteSparse_config.realloc_func = pool_realloc;
+    SuiteSparse_config.free_func = pool_free;
+  });
+}
+
+// ---- Eigen's simplicial LDL^T without allocation ---------------------------------------
+// SimplicialLDLT::factorize builds a temporary matrix on every call; its numeric kernel
+// factorize_preordered does not (below 16k unknowns its scratch lives on the stack). We
+// permute H ourselves (AMD, once) into the upper triangle and call the kernel directly.
+class PreorderedLdlt : public Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> {
+ public:
+  void factorize_preordered_upper(const SpMat& upper) { this->template factorize_preordered<true>(upper); }
+  const SpMat& factor() const { return this->m_matrix; }
+};
+
+struct LdltBackend {
+  std::vector<int> old_to_new;
+  std::vector<int> source;  // upper.valuePtr()[k] = H.valuePtr()[source[k]]
+  SpMat upper;
+  PreorderedLdlt ldlt;
+  VecX permuted_b, permuted_x;
+  double factor_flops = 0.0, solve_flops = 0.0;
+
+  void analyze(const SpMat& a) {
+    const int n = static_cast<int>(a.rows());
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> new_to_old;
+    Eigen::AMDOrdering<int> amd;
+    amd(a, new_to_old);
+    old_to_new.assign(n, 0);
+    for (int k = 0; k < n; ++k) old_to_new[new_to_old.indices()[k]] = k;
+    // Permuted upper triangle whose values are the source positions (exact as doubles).
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(a.nonZeros() / 2 + n);
+    for (int col = 0; col < n; ++col)
+      for (int k = a.outerIndexPtr()[col]; k < a.outerIndexPtr()[col + 1]; ++k) {
+        const int i = old_to_new[a.innerIndexPtr()[k]], j = old_to_new[col];
+        if (i <= j) entries.emplace_back(i, j, static_cast<double>(k));
+      }
+    upper.resize(n, n);
+    upper.setFromTriplets(entries.begin(), entries.end());
+    upper.makeCompressed();
+    source.resize(upper.nonZeros());
+    for (int k = 0; k < upper.nonZeros(); ++k) source[k] = static_cast<int>(upper.valuePtr()[k]);
+    ldlt.analyzePattern(upper);
+    // Cost model from the symbolic factor: an up-looking LDL^T does about c_k^2 flops
+    // for a column with c_k off-diagonal entries; a solve reads L twice.
+    const int* lp = ldlt.factor().outerIndexPtr();
+    factor_flops = solve_flops = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double c = lp[k + 1] - lp[k];
+      factor_flops += c * c + c;
+      solve_flops += 4.0 * c + 1.0;
+    }
+    permuted_b.resize(n);
+    permuted_x.resize(n);
+  }
+
+  bool factorize(const SpMat& a) {
+    const double* src = a.valuePtr();
+    double* dst = upper.valuePtr();
+    for (std::size_t k = 0; k < source.size(); ++k) dst[k] = src[source[k]];
+    ldlt.factorize_preordered_upper(upper);
+    return ldlt.info() == Eigen::Success;
+  }
+
+  void solve(const VecX& b, VecX& x) {
+    const int n = static_cast<int>(b.size());
+    for (int i = 0; i < n; ++i) permuted_b[old_to_new[i]] = b[i];
+    permuted_x = ldlt.solve(permuted_b);
+    for (int i = 0; i < n; ++i) x[i] = permuted_x[old_to_new[i]];
+  }
+};
+
+// ---- CHOLMOD supernodal LL^T -------------------------------------------------------------
+struct CholmodBackend {
+  cholmod_common common;
+  bool started = false;
+  cholmod_factor* factor = nullptr;
+  cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
+  double factor_flops = 0.0, solve_flops = 0.0;
+
+  CholmodBackend() = default;
+  CholmodBackend(const CholmodBackend&) = delete;
+  CholmodBackend& operator=(const CholmodBackend&) = delete;
+  ~CholmodBackend() {
+    if (!started) return;
+    if (factor) cholmod_free_factor(&factor, &common);
+    if (x) cholmod_free_dense(&x, &common);
+    if (y) cholmod_free_dense(&y, &common);
+    if (e) cholmod_free_dense(&e, &common);
+    cholmod_finish(&common);
+    pool_trim();
+  }
+
+  // A header over H's own arrays (no copy): CHOLMOD reads its lower triangle.
+  static cholmod_sparse view(const SpMat& a) {
+    cholmod_sparse s{};
+    s.nrow = s.ncol = static_cast<std::size_t>(a.rows());
+    s.nzmax = static_cast<std::size_t>(a.nonZeros());
+    s.p = const_cast<int*>(a.outerIndexPtr());
+    s.i = const_cast<int*>(a.innerIndexPtr());
+    s.x = const_cast<double*>(a.valuePtr());
+    s.stype = -1;
+    s.itype = CHOLMOD_INT;
+    s.xtype = CHOLMOD_REAL;
+    s.dtype = CHOLMOD_DOUBLE;
+    s.sorted = 1;
+    s.packed = 1;
+    return s;
+  }
+
+  bool analyze(const SpMat& a) {
+    install_cholmod_pool();
+    cholmod_start(&common);
+    started = true;
+    common.print = 0;
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_METIS;
+    common.quick_return_if_not_posdef = 1;
+    cholmod_sparse s = view(a);
+    factor = cholmod_analyze(&s, &common);
+    if (!factor || common.status != CHOLMOD_OK) {
+      // METIS unavailable or failed: CHOLMOD's default choice (AMD) instead.
+      if (factor) cholmod_free_factor(&factor, &common);
+      common.method[0].ordering = CHOLMOD_AMD;
+      factor = cholmod_analyze(&s, &common);
+      if (!factor) return false;
+    }
+    factor_flops = common.fl;
+    solve_flops = 4.0 * common.lnz;
+    return true;
+  }
+
+  bool factorize(const SpMat& a) {
+    cholmod_sparse s = view(a);
+    cholmod_factorize(&s, factor, &common);
+    return common.status == CHOLMOD_OK && factor->minor == factor->n;
+  }
+
+  bool solve(const VecX& b, VecX& out) {
+    cholmod_dense rhs{};
+    rhs.nrow = rhs.d = rhs.nzmax = static_cast<std::size_t>(b.size());
+    rhs.ncol = 1;
+    rhs.x = const_cast<double*>(b.data());
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    if (!cholmod_solve2(CHOLMOD_A, factor, &rhs, nullptr, &x, nullptr, &y, &e, &common)) return false;
+    std::memcpy(out.data(), x->x, sizeof(double) * b.size());
+    return true;
+  }
+};
+
+// y = H v (H in full symmetric storage, so column i is row i) and v.y, in fixed blocks.
+double multiply(const SpMat& h, const VecX& v, VecX& y) {
+  const int n = static_cast<int>(h.rows());
+  const int* outer = h.outerIndexPtr();
+  const int* inner = h.innerIndexPtr();
+  const double* values = h.valuePtr();
+  const BlockSplit blocks = split_blocks(n, 8192, 256);
+  double partial[256];
+  thread_pool().run(blocks.blocks, [&](int b) {
+    double dot = 0.0;
+    for (int i = blocks.begin(b), end = blocks.end(b, n); i < end; ++i) {
+      double s = 0.0;
+      for (int k = outer[i]; k < outer[i + 1]; ++k) s += values[k] * v[inner[k]];
+      y[i] = s;
+      dot += s * v[i];
+    }
+    partial[b] = dot;
+  });
+  double dot = 0.0;
+  for (int b = 0; b < blocks.blocks; ++b) dot += partial[b];
+  return dot;
+}
+
+}  // namespace
+
+struct LinearSolver::Impl {
+  bool pcg = false;
+  bool cholmod = false;
+  LdltBackend ldlt;
+  CholmodBackend chol;
+  // A factorisation stays valid across solves in PCG mode until it stops paying.
+  bool have_factor = false;
+  bool refresh = false;
+  double factor_cost = 0.0;  // flops of one numeric factorisation
+  double iter_cost = 0.0;    // flops of one PCG iteration (a solve, a product, vector work)
+  VecX r, z, p, hp;
+
+  bool factorize(const SpMat& h, LinearSolveStats& stats) {
+    const auto t = Clock::now();
+    const bool ok = cholmod ? chol.factorize(h) : ldlt.factorize(h);
+    stats.factor_ms += ms_since(t);
+    ++stats.factorizations;
+    have_factor = ok;
+    refresh = false;
+    return ok;
+  }
+
+  bool apply_factor(const VecX& b, VecX& x) {
+    if (cholmod) return chol.solve(b, x);
+    ldlt.solve(b, x);
+    return true;
+  }
+
+  // PCG from x = 0, preconditioned by the stored factor; see linear_solver.h for the
+  // stopping rules. Returns 1 converged, 0 not within max_iterations, -1 breakdown.
+  int run_pcg(const SpMat& h, const VecX& b, VecX& x, const SolveRequest& req, int max_iterations,
+              LinearSolveStats& stats) {
+    x.setZero();
+    const double b_norm = b.norm();
+    if (b_norm == 0.0) return 1;
+    r = b;
+    if (!apply_factor(r, z)) return -1;
+    p = z;
+    double rz = r.dot(z);
+    const bool decide = req.threshold > 0.0 && req.lambda_min > 0.0;
+    for (int k = 1; k <= max_iterations; ++k) {
+      const double php = multiply(h, p, hp);
+      if (!(php > 0.0) || !std::isfinite(php)) return -1;
+      const double alpha = rz / php;
+      x += alpha * p;
+      r -= alpha * hp;
+      ++stats.pcg_iterations;
+      const double r_norm = r.norm();
+      if (r_norm <= 1e-13 * b_norm) return 1;  // as accurate as a direct solve
+      if (decide) {
+        auto settled = [&](double residual_norm) {
+          const double x_inf = x.lpNorm<Eigen::Infinity>();
+          const double bound = residual_norm / req.lambda_min;
+          return x_inf + bound < req.threshold ||
+                 (x_inf - bound >= req.threshold && residual_norm <= req.forcing * b_norm);
+        };
+        if (settled(r_norm)) {
+          // Confirm with the true residual b - H x (CG's recurrence drifts by rounding).
+          multiply(h, x, hp);
+          z = b - hp;
+          if (settled(z.norm())) return 1;
+        }
+      } else if (r_norm <= req.forcing * b_norm) {
+        return 1;
+      }
+      if (!apply_factor(r, z)) return -1;
+      const double rz_next = r.dot(z);
+      const double beta = rz_next / rz;
+      rz = rz_next;
+      p = z + beta * p;
+    }
+    return 0;
+  }
+};
+
+LinearSolver::LinearSolver() = default;
+LinearSolver::~LinearSolver() = default;
+LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
+LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
+
+void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool positive_definite) {
+  requested_ = kind;
+  positive_definite_ = positive_definite;
+  impl_ = std::make_unique<Impl>();
+  Impl& s = *impl_;
+  const int n = static_cast<int>(pattern.rows());
+  switch (kind) {
+    case LinearSolverKind::Ldlt:
+      s.pcg = false;
+      s.cholmod = false;
+      break;
+    case LinearSolverKind::Cholmod:
+      s.pcg = false;
+      s.cholmod = true;
+      break;
+    case LinearSolverKind::Pcg:
+      s.pcg = true;
+      s.cholmod = n >= kCholmodMinUnknowns;
+      break;
+    case LinearSolverKind::Auto:
+    default:
+      s.pcg = positive_definite;
+      s.cholmod = positive_definite && n >= kCholmodMinUnknowns;
+      break;
+  }
+  if (s.cholmod && !s.chol.analyze(pattern)) s.cholmod = false;
+  if (!s.cholmod) s.ldlt.analyze(pattern);
+  const double factor_flops = s.cholmod ? s.chol.factor_flops : s.ldlt.factor_flops;
+  const double solve_flops = s.cholmod ? s.chol.solve_flops : s.ldlt.solve_flops;
+  s.factor_cost = factor_flops;
+  s.iter_cost = solve_flops + 2.0 * pattern.nonZeros() + 12.0 * n;
+  s.r.resize(n);
+  s.z.resize(n);
+  s.p.resize(n);
+  s.hp.resize(n);
+}
+
+const char* LinearSolver::backend_name() const {
+  if (!impl_) return "none";
+  if (impl_->pcg) return impl_->cholmod ? "pcg+cholmod" : "pcg+ldlt";
+  return impl_->cholmod ? "cholmod" : "ldlt";
+}
+
+void LinearSolver::invalidate() {
+  if (impl_) impl_->have_factor = false;
+}
+
+bool LinearSolver::solve(const SpMat& h, const VecX& b, VecX& x, const SolveRequest& request,
+                         LinearSolveStats& stats) {
+  Impl& s = *impl_;
+  const auto start = Clock::now();
+  const double factor_ms_before = stats.factor_ms;
+  ++stats.solves;
+  if (x.size() != b.size()) x.resize(b.size());
+  bool ok = true;
+  if (!s.pcg) {
+    ok = s.factorize(h, stats) && s.apply_factor(b, x);
+  } else {
+    // Do not spend more on PCG iterations than a fresh factorisation costs.
+    const int max_iterations = std::max(2, static_cast<int>(std::ceil(s.factor_cost / s.iter_cost)));
+    int outcome = 0;
+    if (s.have_factor && !s.refresh) {
+      const int before = stats.pcg_iterations;
+      outcome = s.run_pcg(h, b, x, request, max_iterations, stats);
+      // Renew the factor for the next solve once the iterations cost half a factorisation.
+      if (outcome == 1 && (stats.pcg_iterations - before) * s.iter_cost > 0.5 * s.factor_cost)
+        s.refresh = true;
+    }
+    if (outcome != 1) {
+      ok = s.factorize(h, stats) && s.run_pcg(h, b, x, request, max_iterations, stats) == 1;
+    }
+  }
+  ok = ok && x.allFinite();
+  stats.solve_ms += ms_since(start) - (stats.factor_ms - factor_ms_before);
+  return ok;
+}
+
+}  // namespace invfree

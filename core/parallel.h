@@ -1,0 +1,81 @@
+// A small fork-join thread pool for the per-Newton-iteration loops (assembly, energy,
+// sparse products). Inputs: a task count and a function of the task index. Output: every
+// task run exactly once, on any of the pool's threads (the caller's thread works too);
+// `run` returns when all are done. Results are deterministic as long as each task writes
+// only its own outputs: callers split work into fixed-size tasks that do not depend on
+// the thread count, so the answer is bit-identical for 1, 2 or N threads.
+//
+// Workers spin briefly (a few microseconds: Newton's parallel phases come in quick
+// succession) and then sleep on a futex, so an idle pool costs no CPU. One process-wide
+// pool is shared by every simulation; `set_thread_count` resizes it (tests, benchmarks,
+// the INVFREE_THREADS environment variable at start-up).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+namespace invfree {
+
+class ThreadPool {
+ public:
+  explicit ThreadPool(int threads);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  int size() const { return static_cast<int>(workers_.size()) + 1; }
+
+  // Calls fn(task) for every task in [0, tasks). Not re-entrant: tasks must not call run.
+  template <class Fn>
+  void run(int tasks, Fn&& fn) {
+    if (tasks <= 0) return;
+    if (tasks == 1 || workers_.empty()) {
+      for (int t = 0; t < tasks; ++t) fn(t);
+      return;
+    }
+    using F = std::remove_reference_t<Fn>;
+    run_impl(tasks, [](void* ctx, int t) { (*static_cast<F*>(ctx))(t); }, const_cast<void*>(static_cast<const void*>(&fn)));
+  }
+
+ private:
+  using TaskFn = void (*)(void*, int);
+  void run_impl(int tasks, TaskFn call, void* ctx);
+  void worker_loop();
+  void work();
+
+  std::vector<std::thread> workers_;
+  std::atomic<std::uint32_t> generation_{0};
+  std::atomic<int> next_task_{0};
+  std::atomic<int> busy_workers_{0};
+  int tasks_ = 0;
+  TaskFn call_ = nullptr;
+  void* ctx_ = nullptr;
+  bool stop_ = false;
+};
+
+// Fixed split of n items into blocks of at least `min_block` and at most `max_blocks`
+// blocks. It depends on n alone, never on the thread count, so per-block partial sums
+// added in block order give the same bits on any number of threads.
+struct BlockSplit {
+  int blocks = 0;
+  int size = 1;
+  int begin(int b) const { return b * size; }
+  int end(int b, int n) const { return b + 1 == blocks ? n : (b + 1) * size; }
+};
+inline BlockSplit split_blocks(int n, int min_block, int max_blocks) {
+  if (n <= 0) return {0, 1};
+  int size = std::max(min_block, (n + max_blocks - 1) / max_blocks);
+  return {(n + size - 1) / size, size};
+}
+
+// The shared pool (created on first use with INVFREE_THREADS or the number of cores).
+ThreadPool& thread_pool();
+int thread_count();
+// Resizes the shared pool; n <= 0 means the number of cores. Not while a step runs.
+void set_thread_count(int n);
+
+}  // namespace invfree
