@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 
 #include "core/line_search_filter.h"
@@ -61,7 +60,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
   // ceiling's penalty stiffness, or 1 for the eliminated ceiling (linear_solver.h).
   const bool psd = problem.projection != HessianProjection::None;
   SolveRequest request;
-  request.forcing = std::getenv("XP_F") ? std::atof(std::getenv("XP_F")) : settings.forcing;  // XXX
+  request.forcing = settings.forcing;
 
   double energy = timed_energy(z);
   for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations) {
