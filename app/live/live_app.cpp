@@ -177,6 +177,9 @@ struct LiveAppImpl {
   }
   bool screenshot_requested = false;
   std::vector<int> injected_keys;  // held by the last injection
+  long drawn_revision = -1;        // what the renderer's texture shows
+  render::Camera drawn_camera;
+  int drawn_width = 0, drawn_height = 0;
 
   void handle_keys() {
     const ImGuiIO& io = ImGui::GetIO();
@@ -365,7 +368,16 @@ struct LiveAppImpl {
     const render::Camera cam{view.pixels_per_metre, view.to_screen(Vec2::Zero())};
     render::DrawOptions draw_options;
     draw_options.camera = cam;
-    renderer->draw(render::capture_frame_state(controller->simulation()), draw_options);
+    // Redrawn only when something it shows changed (paused and untouched: no GL work).
+    const long revision = controller->revision();
+    if (revision != drawn_revision || cam.pixels_per_metre != drawn_camera.pixels_per_metre ||
+        cam.origin != drawn_camera.origin || renderer->width() != drawn_width || renderer->height() != drawn_height) {
+      renderer->draw(render::capture_frame_state(controller->simulation()), draw_options);
+      drawn_revision = revision;
+      drawn_camera = cam;
+      drawn_width = renderer->width();
+      drawn_height = renderer->height();
+    }
     const int w = renderer->width(), h = renderer->height();
     if (recorder && (steps > 0 || record_frame == 0)) {
       std::vector<std::uint8_t> rgba;

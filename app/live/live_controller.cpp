@@ -25,6 +25,7 @@ void LiveController::restart(const SceneDef& scene) {
 }
 
 void LiveController::measure() {
+  ++revision_;
   det_f_ = triangle_det_f(sim_);
   stats_ = StateStats{};
   if (det_f_.empty()) return;

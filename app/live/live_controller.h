@@ -77,6 +77,9 @@ class LiveController {
   long steps_total() const { return steps_total_; }
   double step_ms_total() const { return step_ms_total_; }
   const StatsHistory& min_det_history() const { return min_det_history_; }
+  // Changes whenever the state or the settings change (a picture of an unchanged
+  // revision need not be drawn again).
+  long revision() const { return revision_; }
   // Node closest to `p` within `radius` (world units), or -1.
   int nearest_node(const Vec2& p, double radius) const;
 
@@ -99,6 +102,7 @@ class LiveController {
   StepReport last_report_;
   bool has_report_ = false;
   StatsHistory ms_history_{400}, min_det_history_{400};
+  long revision_ = 0;
   long steps_total_ = 0;
   double step_ms_total_ = 0.0;
   int pull_node_ = -1;

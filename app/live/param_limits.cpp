@@ -14,8 +14,11 @@ std::string format_value(double v) {
 
 namespace {
 
+// (snprintf rather than chains of std::string +: GCC 12 -O3 warns falsely on those, PR105329)
 std::string range_text(Range r, const char* unit) {
-  return "[" + format_value(r.lo) + ", " + format_value(r.hi) + "]" + (*unit ? std::string(" ") + unit : "");
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "[%.4g, %.4g]%s%s", r.lo, r.hi, *unit ? " " : "", unit);
+  return buf;
 }
 
 // c(nu) = lambda / E = nu / ((1 + nu)(1 - 2 nu)), increasing on [0, 0.5).
@@ -42,12 +45,16 @@ MaterialEdit from_young_poisson(double E, double nu, std::string note) {
 }  // namespace
 
 Clamped clamp_to_range(double requested, double current, Range range, const char* name, const char* unit) {
-  if (!std::isfinite(requested))
-    return {current, std::string(name) + ": not a finite number, not applied (kept " + format_value(current) + ")"};
+  char buf[192];
+  if (!std::isfinite(requested)) {
+    std::snprintf(buf, sizeof buf, "%s: not a finite number, not applied (kept %.4g)", name, current);
+    return {current, buf};
+  }
   const double v = std::clamp(requested, range.lo, range.hi);
   if (v == requested) return {v, ""};
-  return {v, std::string(name) + " = " + format_value(requested) + " is outside " + range_text(range, unit) +
-                 "; clamped to " + format_value(v)};
+  std::snprintf(buf, sizeof buf, "%s = %.4g is outside %s; clamped to %.4g", name, requested,
+                range_text(range, unit).c_str(), v);
+  return {v, buf};
 }
 
 MaterialEdit edit_mu(const Lame& current, double mu) {
