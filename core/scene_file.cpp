@@ -68,6 +68,70 @@ bool has_control_characters(std::string_view text) {
   });
 }
 
+// ---- a guard in front of toml++ 3.3 ------------------------------------------------------
+// toml++ 3.3.0 (Debian 12) reaches __builtin_unreachable() -- undefined behaviour, found by
+// our fuzzer -- when it asks whether a non-ASCII code point in U+00A1..U+0499 is
+// whitespace (upstream issues #190 and #295). It asks that of every character outside
+// strings and comments, and of the first character after a backslash in a basic string.
+// No valid scene has a non-ASCII character in those places, so they are refused here,
+// before toml++ sees them. Returns "" or a reason, with the line in *line.
+std::string tomlpp_hazard(std::string_view t, int* line) {
+  enum class State { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral } state = State::Normal;
+  *line = 1;
+  auto non_ascii = [&](size_t i) { return i < t.size() && static_cast<unsigned char>(t[i]) >= 0x80; };
+  auto at = [&](size_t i, std::string_view s) { return t.substr(i, s.size()) == s; };
+  size_t i = at(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark is fine
+  for (; i < t.size(); ++i) {
+    const char c = t[i];
+    if (c == '\n') ++*line;
+    switch (state) {
+      case State::Normal:
+        if (c == '#') state = State::Comment;
+        else if (at(i, "\"\"\"")) state = State::MultiBasic, i += 2;
+        else if (at(i, "'''")) state = State::MultiLiteral, i += 2;
+        else if (c == '"') state = State::Basic;
+        else if (c == '\'') state = State::Literal;
+        else if (non_ascii(i)) return "non-ASCII character outside a string or comment";
+        break;
+      case State::Comment:
+        if (c == '\n') state = State::Normal;
+        break;
+      case State::Literal:
+        if (c == '\'' || c == '\n') state = State::Normal;
+        break;
+      case State::MultiLiteral:
+        if (at(i, "'''")) {
+          i += 2;
+          while (i + 1 < t.size() && t[i + 1] == '\'') ++i;  // up to two quotes may end the content
+          state = State::Normal;
+        }
+        break;
+      case State::Basic:
+      case State::MultiBasic:
+        if (c == '\\') {
+          // After a backslash toml++ skips blanks and line breaks (a line-ending backslash
+          // in a multi-line string), testing each character for whitespace.
+          size_t j = i + 1;
+          while (j < t.size() && (t[j] == ' ' || t[j] == '\t' || (state == State::MultiBasic && (t[j] == '\n' || t[j] == '\r')))) {
+            if (t[j] == '\n') ++*line;
+            ++j;
+          }
+          if (non_ascii(j)) return "non-ASCII character after a backslash in a string";
+          i = j;  // the escaped character (or the next content) is consumed
+          if (i < t.size() && t[i] == '\n') ++*line;
+        } else if (state == State::Basic && (c == '"' || c == '\n')) {
+          state = State::Normal;
+        } else if (state == State::MultiBasic && at(i, "\"\"\"")) {
+          i += 2;
+          while (i + 1 < t.size() && t[i + 1] == '"') ++i;
+          state = State::Normal;
+        }
+        break;
+    }
+  }
+  return "";
+}
+
 // ---- typed readers: return "" or a reason -------------------------------------------
 
 std::string type_name(const toml::node& n) {
@@ -333,6 +397,10 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     out.error = located(source, 0, "not a text file (it contains NUL bytes)");
     return out;
   }
+  if (int line = 0; !tomlpp_hazard(text, &line).empty()) {
+    out.error = located(source, line, "malformed TOML: " + tomlpp_hazard(text, &line));
+    return out;
+  }
   toml::table root;
   try {
     root = toml::parse(text, source);
@@ -368,16 +436,21 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     const toml::table* table = node.as_table();
     if (!table) return {std::nullopt, located(source, line, k + ": expected a [" + k + "] section, got " + type_name(node))};
     if (bool* flag = term_flag(s, k)) *flag = true;
-    for (auto&& [sub, value] : *table) {
-      const std::string sk(sub.str());
-      const std::string full = k + "." + printable(sk);
-      const int vline = static_cast<int>(value.source().begin.line);
-      const KeySpec* spec = find_key(k, sk);
-      if (!spec) return {std::nullopt, located(source, vline, full + ": unknown key" + did_you_mean(sk, keys_of(k)))};
-      if (auto r = apply_key(s, k, *spec, value, &material); !r.empty())
-        return {std::nullopt, located(source, vline, full + ": " + r)};
-      lines[full] = vline;
-      if (k == "material") material_line = std::max(material_line, vline);
+    // Two passes: `enabled` last, so `enabled = false` wins over the other keys of its
+    // section (which switch the term on, as they do in --set) whatever their order.
+    for (int pass = 0; pass < 2; ++pass) {
+      for (auto&& [sub, value] : *table) {
+        const std::string sk(sub.str());
+        if ((sk == "enabled") != (pass == 1)) continue;
+        const std::string full = k + "." + printable(sk);
+        const int vline = static_cast<int>(value.source().begin.line);
+        const KeySpec* spec = find_key(k, sk);
+        if (!spec) return {std::nullopt, located(source, vline, full + ": unknown key" + did_you_mean(sk, keys_of(k)))};
+        if (auto r = apply_key(s, k, *spec, value, &material); !r.empty())
+          return {std::nullopt, located(source, vline, full + ": " + r)};
+        lines[full] = vline;
+        if (k == "material") material_line = std::max(material_line, vline);
+      }
     }
   }
   if (auto r = set_material(s, material); !r.empty()) {
@@ -435,21 +508,26 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   if (!is_section(section)) return where + ": " + printable(section) + ": " + unknown_section_error(section);
   const KeySpec* spec = find_key(section, key);
   if (!spec) return where + ": " + printable(lhs) + ": unknown key" + did_you_mean(key, keys_of(section));
+  // The value in TOML syntax; failing that, a bare word stands for a string
+  // (--set material.model=linear).
+  auto parse_value = [](const std::string& text, toml::table& out) {
+    int line = 0;
+    if (!tomlpp_hazard(text, &line).empty()) return false;
+    try {
+      out = toml::parse(text);
+      return true;
+    } catch (const toml::parse_error&) {
+      return false;
+    }
+  };
   toml::table parsed;
-  try {
-    parsed = toml::parse("v = " + rhs);
-  } catch (const toml::parse_error&) {
-    // Let bare words stand for strings: --set material.model=linear
+  if (!parse_value("v = " + rhs, parsed)) {
     std::string escaped;
     for (char c : rhs) {
       if (c == '"' || c == '\\') escaped += '\\';
       escaped += c;
     }
-    try {
-      parsed = toml::parse("v = \"" + escaped + "\"");
-    } catch (const toml::parse_error&) {
-      return where + ": " + lhs + ": cannot parse the value";
-    }
+    if (!parse_value("v = \"" + escaped + "\"", parsed)) return where + ": " + lhs + ": cannot parse the value";
   }
   // "v = 1\n[mesh]\nside = 2" parses, but is not one value.
   if (parsed.size() != 1 || !parsed.get("v"))
@@ -492,6 +570,8 @@ std::string toml_string(std::string_view text) {
 }  // namespace
 
 std::string scene_to_toml(const SceneDef& s) {
+  // Every key is written, and a switched-off term keeps its values under `enabled = false`,
+  // so that parsing the text gives back exactly this scene.
   std::ostringstream o;
   o.precision(17);
   auto vec = [](const Vec2& v) {
@@ -500,23 +580,23 @@ std::string scene_to_toml(const SceneDef& s) {
     t << "[" << v.x() << ", " << v.y() << "]";
     return t.str();
   };
+  auto enabled = [](bool on) { return on ? "" : "enabled = false\n"; };
   o << "name = " << toml_string(s.name) << "\n\n";
   o << "[mesh]\nside = " << s.side << "\nn_seg = " << s.n_seg << "\ndensity = " << s.density
-    << "\nmass = \"" << (s.mass == MassMode::Uniform ? "uniform" : "lumped") << "\"\n";
-  if (s.jitter > 0.0) o << "jitter = " << s.jitter << "\nseed = " << s.seed << "\n";
+    << "\nmass = \"" << (s.mass == MassMode::Uniform ? "uniform" : "lumped") << "\"\njitter = " << s.jitter
+    << "\nseed = " << s.seed << "\n";
   o << "\n[material]\nmodel = \"" << model_name(s.model) << "\"\nmu = " << s.lame.mu
     << "\nlambda = " << s.lame.lambda << "\n";
   o << "\n[time]\nh = " << s.h << "\ntol = " << s.tol << "\nmax_newton = " << s.max_newton << "\n";
   o << "\n[solver]\nprojection = \"" << projection_name(s.projection) << "\"\ninversion_filter = "
     << (s.inversion_filter ? "true" : "false") << "\nintegrator = \"" << integrator_name(s.integrator)
     << "\"\n";
-  if (!s.initial_velocity.isZero()) o << "\n[initial]\nvelocity = " << vec(s.initial_velocity) << "\n";
-  if (s.has_gravity) o << "\n[gravity]\ng = " << vec(s.gravity) << "\n";
-  if (s.has_ground) o << "\n[ground]\ny = " << s.ground_y << "\nfriction = " << s.friction << "\n";
-  if (s.has_ceiling)
-    o << "\n[ceiling]\ny = " << s.ceiling_y << "\nvelocity = " << s.ceiling_velocity
-      << "\nstop = " << s.ceiling_stop << "\n";
-  if (s.has_contact()) o << "\n[barrier]\ndhat = " << s.dhat << "\nkappa = " << s.kappa << "\n";
+  o << "\n[initial]\nvelocity = " << vec(s.initial_velocity) << "\n";
+  o << "\n[gravity]\n" << enabled(s.has_gravity) << "g = " << vec(s.gravity) << "\n";
+  o << "\n[ground]\n" << enabled(s.has_ground) << "y = " << s.ground_y << "\nfriction = " << s.friction << "\n";
+  o << "\n[ceiling]\n" << enabled(s.has_ceiling) << "y = " << s.ceiling_y << "\nvelocity = " << s.ceiling_velocity
+    << "\nstop = " << s.ceiling_stop << "\n";
+  o << "\n[barrier]\ndhat = " << s.dhat << "\nkappa = " << s.kappa << "\n";
   return o.str();
 }
 

@@ -41,6 +41,28 @@ TEST(SceneFiles, SerialisationRoundTrips) {
   }
 }
 
+TEST(SceneFiles, DisabledTermsKeepTheirValuesAndRoundTrip) {
+  // `enabled = false` wins whatever the key order (toml++ iterates keys alphabetically).
+  for (const char* text : {"[ceiling]\nenabled = false\ny = 0.7\n", "[ceiling]\ny = 0.7\nenabled = false\n"}) {
+    const SceneLoad load = parse_scene_toml(text, "off.toml");
+    ASSERT_TRUE(load.scene) << load.error;
+    EXPECT_FALSE(load.scene->has_ceiling) << text;
+    EXPECT_EQ(load.scene->ceiling_y, 0.7);
+    const SceneLoad back = parse_scene_toml(scene_to_toml(*load.scene), "back.toml");
+    ASSERT_TRUE(back.scene) << back.error;
+    EXPECT_TRUE(*back.scene == *load.scene) << scene_to_toml(*load.scene);
+  }
+  SceneDef odd = *find_builtin_scene("drop");
+  odd.name = "quote \" and \\ backslash";
+  odd.seed = 99;  // kept even while jitter is 0
+  odd.has_gravity = false;
+  odd.gravity = Vec2(1.5, -2.0);
+  odd.dhat = 0.02;
+  const SceneLoad back = parse_scene_toml(scene_to_toml(odd), "odd.toml");
+  ASSERT_TRUE(back.scene) << back.error << "\n" << scene_to_toml(odd);
+  EXPECT_TRUE(*back.scene == odd) << scene_to_toml(odd);
+}
+
 TEST(SceneFiles, MissingSectionsSwitchTermsOff) {
   const SceneLoad load = parse_scene_toml("[mesh]\nn_seg = 2\n", "bare.toml");
   ASSERT_TRUE(load.scene) << load.error;
@@ -372,6 +394,31 @@ TEST(BadInput, MalformedToml) {
   expect_bad_file("v = " + deep, "bad.toml:1: malformed TOML");
   expect_bad_file("v = " + std::string(100000, '{'), "bad.toml:1: malformed TOML");
   report_count("malformed TOML");
+}
+
+// toml++ 3.3 reaches __builtin_unreachable() on some non-ASCII characters (found by
+// tests/fuzz; see tomlpp_hazard in core/scene_file.cpp): they must be refused cleanly
+// before toml++ sees them, while non-ASCII text inside strings and comments stays fine.
+TEST(BadInput, NonAsciiWhereTomlppMisbehaves) {
+  expect_bad_file("mes\xcc\xa0se#", "bad.toml:1: malformed TOML: non-ASCII character outside a string or comment");
+  expect_bad_file("[mesh]\nside\xc2\xa7= 1\n", "bad.toml:2: malformed TOML: non-ASCII character outside a string");
+  expect_bad_file("name = \"\"\"\\\n\xc2\xa7\"\"\"\n", "bad.toml:2: malformed TOML: non-ASCII character after a backslash");
+  expect_bad_file("name = \"a\\\xc2\xa7\"\n", "bad.toml:1: malformed TOML: non-ASCII character after a backslash");
+  SceneDef s = *find_builtin_scene("compress");
+  expect_clean_error(apply_override(s, "material.model=lin\xcc\xa0" "ear"), "unknown value \"lin\xcc\xa0" "ear\"", "--set");
+  const char* fine[] = {
+      "\xef\xbb\xbfname = \"bom\"\n",                 // a byte-order mark
+      "name = \"\xc3\xa9mile \xc2\xa7 \xe2\x80\x83\"\n",  // non-ASCII inside a string
+      "# \xc2\xa7 commentaire \xc3\xa9\n[mesh]\nn_seg = 2 # \xcc\xa0\n",
+      "name = '\xc2\xa7'\n",
+      "name = \"\"\"\n\xc2\xa7 \"\" \xc2\xa7\"\"\"\n",
+      "name = '''\xc2\xa7\\\xc2\xa7'''\n",  // no escapes in literal strings
+  };
+  for (const char* text : fine) {
+    const SceneLoad load = parse_scene_toml(text, "fine.toml");
+    EXPECT_TRUE(load.scene) << text << "\n" << load.error;
+  }
+  report_count("non-ASCII");
 }
 
 TEST(BadInput, BinaryData) {
