@@ -124,8 +124,8 @@ void register_live_command(CLI::App& app, int& exit_code) {
 int run_default_command() {
   if (!live::display_available()) {
     std::fprintf(stderr,
-                 "invfree: no command given; with a display it opens the live window, without one try `invfree "
-                 "simulate` or `invfree render` (see invfree --help)\n");
+                 "invfree: a subcommand is required when there is no display (plain `invfree` opens the live "
+                 "window only on one); try `invfree simulate` or `invfree render` (see invfree --help)\n");
     return exit_code::kBadInput;
   }
   LiveCommandOptions opt;

@@ -130,6 +130,10 @@ double ip_energy(const StepProblem& p, const VecX& z) {
     const double gap = z[2 * n] - p.ceiling_target;
     e += 0.5 * p.ceiling_stiffness * gap * gap;
   }
+  if (p.pull_on) {
+    const Vec2 d = node_at(zp, p.pull_node) - p.pull_target;
+    e += 0.5 * p.h * p.h * p.pull_stiffness * d.squaredNorm();
+  }
   return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
 }
 
@@ -250,6 +254,15 @@ void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient, Sp
       }
     }
   });
+
+  if (p.pull_on) {
+    const int ix = 2 * p.pull_node, iy = ix + 1;
+    const double k = h2 * p.pull_stiffness;
+    g[ix] += k * (z[ix] - p.pull_target.x());
+    g[iy] += k * (z[iy] - p.pull_target.y());
+    values[hess.diagonal_slots[ix]] += k;
+    values[hess.diagonal_slots[iy]] += k;
+  }
 
   if (p.ceiling_on) {
     const int c = 2 * n;

@@ -46,6 +46,13 @@ struct StepProblem {
   double ceiling_stiffness = 0.0;  // k, already multiplied by the ceiling's mass
   bool ceiling_fixed = false;
 
+  // Optional grab spring (the live window's mouse): + h^2 k/2 |x_node - target|^2, one
+  // node pulled toward a target while the user drags it. Off in every scene.
+  bool pull_on = false;
+  int pull_node = 0;
+  Vec2 pull_target = Vec2::Zero();
+  double pull_stiffness = 0.0;  // k, N/m
+
   int node_count() const { return mesh->node_count(); }
   int dof_count() const { return 2 * node_count() + (ceiling_on ? 1 : 0); }
 };

@@ -86,6 +86,11 @@ void fill_problem(Simulation& sim) {
     p.ceiling_stiffness = std::max(kCeilingInitialStiffness * sim.ceiling_mass, p.ceiling_stiffness);
     p.ceiling_fixed = false;
   }
+  p.pull_on = sim.pull.on && sim.pull.node >= 0 && sim.pull.node < n && sim.pull.target.allFinite() &&
+              sim.pull.stiffness > 0.0;
+  p.pull_node = sim.pull.node;
+  p.pull_target = sim.pull.target;
+  p.pull_stiffness = sim.pull.stiffness;
 }
 
 // The linear solver follows the scene's [solver] settings; its symbolic analysis is redone
@@ -161,6 +166,7 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
         f.x() -= friction_derivative(s.h * sim.v[2 * i], -s.friction * db, kFrictionEpsV * s.h);
     }
     if (s.has_ceiling) f.y() += barrier_derivative(sim.ceiling_y - y, b);
+    if (sim.pull.on && sim.pull.node == i) f -= sim.pull.stiffness * (sim.x.segment<2>(2 * i) - sim.pull.target);
     v_new.segment<2>(2 * i) += s.h / sim.node_mass[i] * f;
   }
   sim.x_new = sim.x + s.h * v_new;

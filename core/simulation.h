@@ -32,6 +32,14 @@ struct StepReport {
   int energy_evaluations = 0;
 };
 
+// A spring pulling one node toward a target (the live window's grab), on while dragging.
+struct PullSpring {
+  bool on = false;
+  int node = 0;
+  Vec2 target = Vec2::Zero();
+  double stiffness = 0.0;  // N/m
+};
+
 struct Simulation {
   SceneDef scene;
   Mesh mesh;
@@ -43,6 +51,7 @@ struct Simulation {
   double ceiling_nominal = 0.0;
   double time = 0.0;
   long step_count = 0;
+  PullSpring pull;            // input: applied by every step while on
   // Solver workspace (sparsity pattern and symbolic factorisation, built once per mesh)
   // and the step's scratch vectors: a step allocates nothing.
   NewtonWorkspace workspace;

@@ -121,7 +121,10 @@ void LiveController::end_pull() {
 }
 
 void LiveController::sync_pull() {
-  // Filled in once core has the grab spring (see core/simulation.h).
+  sim_.pull.on = pull_node_ >= 0;
+  sim_.pull.node = std::max(pull_node_, 0);
+  sim_.pull.target = pull_target_;
+  sim_.pull.stiffness = pull_stiffness;
 }
 
 int LiveController::nearest_node(const Vec2& p, double radius) const {
