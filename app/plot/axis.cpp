@@ -81,6 +81,32 @@ std::vector<Tick> axis_ticks(const AxisRange& r) {
         ticks.push_back(t);
       }
     }
+    // A range inside one decade may hold no 1, 2 or 5: label every minor tick then, and
+    // if even that gives fewer than two labels, use linear 1-2-5 steps on the log axis.
+    auto labelled = [&] { return std::count_if(ticks.begin(), ticks.end(), [](const Tick& t) { return t.labelled; }); };
+    if (labelled() < 2 && minor_ticks)
+      for (Tick& t : ticks) {
+        t.labelled = true;
+        if (t.decade_label) {
+          t.decade_label = false;
+          t.label = format_tick(t.value);
+        } else if (t.label.empty()) {
+          t.label = format_tick(t.value);
+        }
+      }
+    if (labelled() < 2) {
+      AxisRange linear{false, std::pow(10.0, r.lo), std::pow(10.0, r.hi)};
+      std::vector<Tick> fine = axis_ticks(linear);
+      for (Tick& t : fine) t.major = false;
+      fine.erase(std::remove_if(fine.begin(), fine.end(), [](const Tick& t) { return !(t.value > 0.0); }), fine.end());
+      for (const Tick& t : ticks)
+        if (t.major) {
+          Tick d = t;
+          d.labelled = false;
+          fine.push_back(d);
+        }
+      return fine;
+    }
     return ticks;
   }
   const double span = r.hi - r.lo;

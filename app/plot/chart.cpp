@@ -75,8 +75,8 @@ Image render_chart(const ChartSpec& spec) {
   const PlotFrame frame{left, top, right, bottom, xr, yr};
 
   for (size_t i = 0; i < title_lines.size(); ++i)
-    draw_text(img, title_lines[i], (left + right) / 2.0, 24 * u + title_size * (1.2 * i + 0.85), title_size,
-              kInk, Align::Center);
+    draw_text(img, title_lines[i], width / 2.0, 24 * u + title_size * (1.2 * i + 0.85), title_size, kInk,
+              Align::Center);
 
   // Grid, then frame, ticks and labels.
   for (const Tick& t : xticks) {

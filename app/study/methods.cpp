@@ -1,0 +1,63 @@
+#include "app/study/methods.h"
+
+#include "core/scene_file.h"
+
+namespace invfree {
+
+namespace {
+
+const std::vector<Method>& table() {
+  static const std::vector<Method> methods = {
+      {"lecture", "lecture: diagonal-space projection + inversion filter",
+       {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler"}},
+      {"full-eigen-clamp", "6x6 eigenvalue clamp + inversion filter",
+       {"material.model=neo-hookean", "solver.projection=full", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler"}},
+      {"no-projection", "no projection (plain Newton) + inversion filter",
+       {"material.model=neo-hookean", "solver.projection=none", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler"}},
+      {"no-inversion-filter", "diagonal projection, backtracking only",
+       {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=false",
+        "solver.integrator=implicit-euler"}},
+      {"symplectic-euler", "symplectic Euler (explicit), neo-Hookean",
+       {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=symplectic-euler"},
+       20},
+      {"linear", "linear elasticity, projected Newton",
+       {"material.model=linear", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler"}},
+      {"arap", "ARAP, projected Newton",
+       {"material.model=arap", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler"}},
+      {"stable-neo-hookean", "stable neo-Hookean, projected Newton",
+       {"material.model=stable-neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler"}},
+  };
+  return methods;
+}
+
+}  // namespace
+
+std::span<const Method> study_methods() { return table(); }
+
+const Method* find_method(const std::string& name) {
+  for (const Method& m : table())
+    if (name == m.name) return &m;
+  return nullptr;
+}
+
+std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps) {
+  for (const char* o : method.overrides)
+    if (std::string e = apply_override(scene, o); !e.empty()) return e;
+  if (with_substeps) scene.h /= method.substeps;
+  return "";
+}
+
+std::string method_command_line(const Method& method) {
+  std::string s;
+  for (const char* o : method.overrides) s += std::string(s.empty() ? "" : " ") + "--set " + o;
+  return s;
+}
+
+}  // namespace invfree

@@ -1,0 +1,38 @@
+// The methods the study and the stability sweep compare (issue 5). Each is nothing but a
+// set of scene settings, written as the `--set section.key=value` overrides a user would
+// type, applied through the scene-file parser: no method has a code path of its own.
+//   lecture            neo-Hookean, diagonal-space PSD projection, inversion-free filter
+//   full-eigen-clamp   the same, clamping each triangle's whole 6x6 Hessian instead
+//   no-projection      the same, plain Newton on the indefinite Hessian
+//   no-inversion-filter the same, with only backtracking (no det F > 0 step bound)
+//   symplectic-euler   explicit, on the same energies, `substeps` steps per scene step
+//   linear, arap, stable-neo-hookean  the invertible models, lecture's solver settings
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace invfree {
+
+struct Method {
+  const char* name;   // CSV/table key
+  const char* label;  // legend text
+  std::vector<const char*> overrides;  // every solver/model key, so no scene setting leaks in
+  int substeps = 1;   // steps per scene step in the stability sweep (explicit: tiny steps)
+  bool implicit() const { return substeps == 1; }
+};
+
+std::span<const Method> study_methods();
+const Method* find_method(const std::string& name);
+
+// The scene with the method's settings applied (time.h is divided by `substeps` when
+// `with_substeps`). Returns "" or the parser's error.
+std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps);
+
+// The method's settings as a command line fragment, e.g. "--set solver.projection=full".
+std::string method_command_line(const Method& method);
+
+}  // namespace invfree

@@ -1,0 +1,145 @@
+#include "app/study/stability.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "app/study/methods.h"
+#include "app/study/stress_scenes.h"
+
+namespace invfree {
+
+namespace {
+
+std::string fmt(double v, const char* f = "%.3g") {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+StabilityResult run_stability(const StabilityOptions& options) {
+  StabilityResult result;
+  for (const Method& m : study_methods()) {
+    result.methods.push_back(m.name);
+    result.method_labels.push_back(m.label);
+  }
+  std::vector<std::optional<SceneDef>> scenes;
+  for (const StressScene& s : stress_scenes()) {
+    std::string error;
+    scenes.push_back(load_stress_scene(s, &error));
+    if (!scenes.back()) result.scene_errors.push_back(error);
+    result.scenes.push_back(s.name);
+    result.scene_labels.push_back(s.label);
+  }
+  for (const Method& m : study_methods()) {
+    for (size_t k = 0; k < scenes.size(); ++k) {
+      if (options.stop && options.stop()) {
+        result.stopped = true;
+        return result;
+      }
+      StabilityCell cell;
+      cell.method = m.name;
+      cell.scene = result.scenes[k];
+      if (!scenes[k]) {
+        cell.verdict = Verdict::NotApplicable;
+        cell.fail_step = 0;
+        cell.message = "the scene file does not load";
+        result.cells.push_back(cell);
+        continue;
+      }
+      SceneDef scene = *scenes[k];
+      RunOptions run;
+      run.duration = stability_duration(scene);
+      if (options.quick) run.duration = std::min(run.duration, std::round(2.0 / scene.h) * scene.h);
+      run.keep_frame = true;
+      if (std::string e = apply_method(m, scene, true); !e.empty()) {
+        cell.verdict = Verdict::NotApplicable;
+        cell.fail_step = 0;
+        cell.message = e;
+        result.cells.push_back(cell);
+        continue;
+      }
+      const RunResult r = run_scene(scene, run);
+      cell.verdict = r.verdict;
+      cell.fail_step = r.fail_step;
+      cell.wall_s = r.wall_s;
+      cell.h = scene.h;
+      cell.steps = r.steps;
+      cell.duration = run.duration;
+      cell.message = r.message;
+      cell.frame = r.frame;
+      result.total_wall_s += r.wall_s;
+      if (options.progress)
+        options.progress(std::string(m.name) + " on " + cell.scene + ": " + verdict_name(r.verdict) +
+                         (r.verdict == Verdict::Ok ? "" : " at step " + std::to_string(r.fail_step)) + " (" +
+                         std::to_string(r.steps) + " steps of " + fmt(scene.h) + " s, " + fmt(r.wall_s) + " s)" +
+                         (r.message.empty() ? "" : ": " + r.message));
+      result.cells.push_back(std::move(cell));
+    }
+  }
+  return result;
+}
+
+std::string stability_csv(const StabilityResult& r) {
+  std::ostringstream o;
+  o << "method,scene,verdict,fail_step,wall_s\n";
+  for (const StabilityCell& c : r.cells)
+    o << c.method << "," << c.scene << "," << verdict_name(c.verdict) << ","
+      << (c.verdict == Verdict::Ok ? std::string() : std::to_string(c.fail_step)) << "," << fmt(c.wall_s, "%.6g")
+      << "\n";
+  return o.str();
+}
+
+std::string stability_markdown(const StabilityResult& r) {
+  std::ostringstream o;
+  o << "# Where methods fail: `invfree stability`\n\n"
+    << "Each row is a method, each column a stress scene (`assets/scenes/<scene>.toml`). A cell is `ok`, or "
+       "the verdict and the step at which the run failed (`n/a`: the method cannot start the scene). "
+       "Symplectic Euler takes 20 steps per scene step.\n\n";
+  o << "| method |";
+  for (const std::string& s : r.scenes) o << " `" << s << "` |";
+  o << "\n|---|";
+  for (size_t k = 0; k < r.scenes.size(); ++k) o << "---|";
+  o << "\n";
+  for (size_t m = 0; m < r.methods.size(); ++m) {
+    o << "| " << r.methods[m] << " |";
+    for (size_t k = 0; k < r.scenes.size(); ++k) {
+      const StabilityCell& c = r.at(m, k);
+      if (c.verdict == Verdict::Ok) o << " ok |";
+      else if (c.verdict == Verdict::NotApplicable) o << " n/a |";
+      else o << " **" << verdict_name(c.verdict) << "** (step " << c.fail_step << ") |";
+    }
+    o << "\n";
+  }
+  o << "\nScenes:\n\n";
+  for (size_t k = 0; k < r.scenes.size(); ++k) o << "- `" << r.scenes[k] << "`: " << r.scene_labels[k] << "\n";
+  o << "\nMethods (each is only scene settings, `--set` on any command):\n\n";
+  for (const Method& m : study_methods())
+    o << "- `" << m.name << "`: " << m.label << " — `" << method_command_line(m) << "`"
+      << (m.substeps > 1 ? " with h / " + std::to_string(m.substeps) : "") << "\n";
+  o << "\nWall-clock seconds inside the solver for each whole run:\n\n| method |";
+  for (const std::string& s : r.scenes) o << " `" << s << "` |";
+  o << "\n|---|";
+  for (size_t k = 0; k < r.scenes.size(); ++k) o << "---:|";
+  o << "\n";
+  for (size_t m = 0; m < r.methods.size(); ++m) {
+    o << "| " << r.methods[m] << " |";
+    for (size_t k = 0; k < r.scenes.size(); ++k) {
+      const StabilityCell& c = r.at(m, k);
+      o << " " << (c.verdict == Verdict::NotApplicable ? std::string("–") : fmt(c.wall_s, "%.3f")) << " |";
+    }
+    o << "\n";
+  }
+  o << "\nWhy each failing run stopped:\n\n";
+  for (const StabilityCell& c : r.cells)
+    if (c.verdict != Verdict::Ok)
+      o << "- " << c.method << " on `" << c.scene << "`: " << verdict_name(c.verdict)
+        << (c.verdict == Verdict::NotApplicable ? "" : " at step " + std::to_string(c.fail_step)) << ": "
+        << c.message << "\n";
+  for (const std::string& e : r.scene_errors) o << "- scene file error: " << e << "\n";
+  return o.str();
+}
+
+}  // namespace invfree

@@ -1,0 +1,49 @@
+// `invfree stability`: every method (methods.h) on every stress scene (stress_scenes.h),
+// each run classified (verdict.h) with the step of failure and the wall time, and the
+// final or failing frame kept for the contact sheet (contact_sheet.h).
+// Symplectic Euler takes 20 steps per scene step (it is explicit: "tiny steps"); every
+// other method runs at the scene's own h.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/study/run.h"
+
+namespace invfree {
+
+struct StabilityCell {
+  std::string method, scene;
+  Verdict verdict = Verdict::Ok;
+  long fail_step = -1;
+  double wall_s = 0.0;  // wall-clock seconds inside step() for the whole run
+  double h = 0.0;       // the step the method actually used
+  long steps = 0;
+  double duration = 0.0;
+  std::string message;
+  Frame frame;
+};
+
+struct StabilityResult {
+  std::vector<std::string> methods, method_labels;  // rows
+  std::vector<std::string> scenes, scene_labels;    // columns
+  std::vector<StabilityCell> cells;                 // row-major
+  std::vector<std::string> scene_errors;            // a stress file that failed to load
+  double total_wall_s = 0.0;
+  bool stopped = false;  // `stop` returned true: the result is incomplete
+  const StabilityCell& at(size_t method, size_t scene) const { return cells[method * scenes.size() + scene]; }
+};
+
+struct StabilityOptions {
+  bool quick = false;  // quick: the first 2 s of each scene only (the full ceiling travel otherwise)
+  std::function<void(const std::string&)> progress;
+  std::function<bool()> stop;  // checked between runs (Ctrl-C); may be empty
+};
+
+StabilityResult run_stability(const StabilityOptions& options);
+
+std::string stability_csv(const StabilityResult& r);
+std::string stability_markdown(const StabilityResult& r);
+
+}  // namespace invfree

@@ -1,0 +1,34 @@
+// The stress scenes of `invfree stability`. Their single source is the TOML files
+// assets/scenes/stress-*.toml; the build embeds the text of every one of them
+// (app/study/CMakeLists.txt), so the command needs no asset path at run time, and
+// `invfree simulate --scene assets/scenes/stress-h0.1.toml` runs the very same scene.
+// They are file-only scenes, not built-ins (core/scene.cpp's table is unchanged).
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+
+#include "core/scene.h"
+
+namespace invfree {
+
+struct StressScene {
+  std::string name;   // file stem, e.g. "stress-h0.1"
+  std::string label;  // column heading, e.g. "h = 0.1 s"
+  std::string toml;   // the file's text
+};
+
+// Every embedded stress scene, in the order of the stability table's columns.
+const std::vector<StressScene>& stress_scenes();
+
+// Parses and validates a stress scene; on failure returns nothing and sets `error`.
+// (A scene the lecture's model cannot start, like stress-jitter-inverted, validates with
+// the model its file names; a method switching to neo-Hookean then makes it n/a.)
+std::optional<SceneDef> load_stress_scene(const StressScene& s, std::string* error);
+
+// Simulated time of a stability run: until the ceiling has stopped, plus 0.5 s to settle
+// (at least 2 s), rounded to whole steps of the scene's h.
+double stability_duration(const SceneDef& scene);
+
+}  // namespace invfree

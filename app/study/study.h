@@ -1,0 +1,68 @@
+// `invfree study`: speed against accuracy for every method (methods.h) on one scene.
+// For each method the time step h is swept (implicit methods around the scene's h,
+// symplectic Euler at 1/10 of it and below, where it can be stable); for every implicit
+// method the Newton tolerance is swept at the scene's h; for the lecture's method the mesh
+// resolution is swept too. Accuracy: RMS node-position error over the nodes and the
+// sample times, relative to the side length, against a converged reference of the same
+// scene and model (lecture's solver, h / 400, tol / 1e4; computed here). Speed: wall-clock
+// seconds inside step() per simulated second.
+// Inputs: a validated scene and options. Output: the rows of study.csv and the fitted
+// convergence slope; charts are drawn by study_chart.h.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace invfree {
+
+struct StudyOptions {
+  bool quick = false;
+  std::function<void(const std::string&)> progress;  // one line per run, may be empty
+  std::function<bool()> stop;  // checked between runs (Ctrl-C); may be empty
+};
+
+struct StudyRow {
+  std::string method;
+  double h = 0.0, tol = 0.0;
+  int n_seg = 0;
+  double wall_s = 0.0;  // wall-clock seconds per simulated second (over the part that ran)
+  double error = 0.0;   // NaN when the run failed or has no reference
+  double newton_iters = 0.0;  // mean Newton iterations per step
+  std::string failure;        // verdict: "ok", "penetrated", ... (verdict.h)
+  long fail_step = -1;
+  std::string message;
+};
+
+struct StudyResult {
+  SceneDef scene;              // the scene as given (before any method's settings)
+  std::vector<double> sample_times;
+  double duration = 0.0;
+  double reference_h = 0.0, reference_tol = 0.0;
+  int mesh_reference_n_seg = 0;
+  double mesh_reference_h = 0.0;
+  std::vector<StudyRow> rows;
+  std::vector<std::string> reference_failures;  // one line each, empty when all converged
+  double lecture_slope = 0.0;  // fitted d log(error) / d log(h), lecture's method
+  // The classic check: the lecture's method on the same scene with contact switched off
+  // (rows "lecture-no-contact"), where the motion is smooth and implicit Euler's first
+  // order shows at every h swept; with stiff contact it only shows for h far below the
+  // contact time scale (see the README).
+  double smooth_slope = 0.0;
+  double total_wall_s = 0.0;
+  bool stopped = false;  // `stop` returned true: the result is incomplete
+};
+
+// Errors in the scene (e.g. a method cannot be applied) are reported in rows; never throws.
+StudyResult run_study(const SceneDef& scene, const StudyOptions& options);
+
+std::string study_csv(const StudyResult& result);
+
+// Which sweep a row belongs to (a row can be in several: the base point is in all).
+bool in_h_sweep(const StudyResult& r, const StudyRow& row);
+bool in_tol_sweep(const StudyResult& r, const StudyRow& row);
+bool in_mesh_sweep(const StudyResult& r, const StudyRow& row);
+
+}  // namespace invfree

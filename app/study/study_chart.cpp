@@ -1,0 +1,242 @@
+#include "app/study/study_chart.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numeric>
+#include <tuple>
+
+#include "app/plot/raster.h"
+#include "app/study/methods.h"
+
+namespace invfree {
+
+namespace {
+
+std::string fmt(double v, const char* f = "%.3g") {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string join_times(const std::vector<double>& t) {
+  std::string s;
+  for (size_t i = 0; i < t.size(); ++i) s += (i ? ", " : "") + fmt(t[i], "%.4g");
+  return s;
+}
+
+// Failed runs are not plotted; they are listed per method in the notes.
+void add_failure_notes(const StudyResult& r, bool (*in_sweep)(const StudyResult&, const StudyRow&),
+                       const char* key, std::vector<std::string>& notes) {
+  std::map<std::string, std::string> by_method;
+  for (const StudyRow& row : r.rows) {
+    if (!in_sweep(r, row) || row.failure == "ok") continue;
+    std::string& s = by_method[row.method];
+    const double v = std::string(key) == "h" ? row.h : row.tol;
+    s += (s.empty() ? "" : ", ") + std::string(key) + " = " + fmt(v, "%.4g") + " " + row.failure;
+  }
+  for (const auto& [method, s] : by_method) notes.push_back(method + " failed: " + s);
+}
+
+}  // namespace
+
+Rgb method_color(const std::string& method) {
+  // Okabe-Ito, distinguishable with the common colour-vision deficiencies.
+  static const std::map<std::string, Rgb> colors = {
+      {"lecture", {0.00f, 0.45f, 0.70f}},          {"full-eigen-clamp", {0.90f, 0.62f, 0.00f}},
+      {"no-projection", {0.84f, 0.37f, 0.00f}},    {"no-inversion-filter", {0.80f, 0.47f, 0.65f}},
+      {"symplectic-euler", {0.34f, 0.71f, 0.91f}}, {"linear", {0.00f, 0.62f, 0.45f}},
+      {"arap", {0.55f, 0.34f, 0.16f}},             {"stable-neo-hookean", {0.55f, 0.55f, 0.55f}},
+      {"lecture-mesh", {0.00f, 0.45f, 0.70f}}};
+  auto it = colors.find(method);
+  return it == colors.end() ? Rgb{0.2f, 0.2f, 0.2f} : it->second;
+}
+
+std::vector<size_t> pareto_front(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<size_t> idx;
+  for (size_t i = 0; i < std::min(x.size(), y.size()); ++i)
+    if (std::isfinite(x[i]) && std::isfinite(y[i])) idx.push_back(i);
+  std::sort(idx.begin(), idx.end(), [&](size_t a, size_t b) { return x[a] < x[b] || (x[a] == x[b] && y[a] < y[b]); });
+  std::vector<size_t> front;
+  double best = INFINITY;
+  for (size_t i : idx)
+    if (y[i] < best) {
+      front.push_back(i);
+      best = y[i];
+    }
+  return front;
+}
+
+Image stack_vertical(const std::vector<Image>& panels) {
+  int w = 0, h = 0;
+  for (const Image& p : panels) {
+    w = std::max(w, p.width);
+    h += p.height;
+  }
+  Image out = make_image(w, h, {1.0f, 1.0f, 1.0f});
+  int y = 0;
+  for (const Image& p : panels) {
+    blit(out, p, 0, y);
+    y += p.height;
+  }
+  return out;
+}
+
+Image study_chart(const StudyResult& r) {
+  const std::string scene = r.scene.name;
+  // (A) error against wall time.
+  ChartSpec a;
+  a.title = "Speed against accuracy: " + scene + " (" + std::to_string(r.scene.n_seg) + "x" +
+            std::to_string(r.scene.n_seg) + " mesh), each point one time step h";
+  a.x_label = "wall-clock time per simulated second (s/s)";
+  a.y_label = "RMS node-position error / side length";
+  a.log_x = a.log_y = true;
+  std::vector<double> all_x, all_y;
+  for (const Method& m : study_methods()) {
+    Series s;
+    s.label = m.label;
+    s.color = method_color(m.name);
+    for (const StudyRow& row : r.rows)
+      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) && row.error > 0.0) {
+        s.x.push_back(row.wall_s);
+        s.y.push_back(row.error);
+      }
+    all_x.insert(all_x.end(), s.x.begin(), s.x.end());
+    all_y.insert(all_y.end(), s.y.begin(), s.y.end());
+    a.series.push_back(s);
+  }
+  Series front;
+  front.label = "Pareto front (nothing is both faster and more accurate)";
+  front.color = {0.0f, 0.0f, 0.0f};
+  front.markers = false;
+  for (size_t i : pareto_front(all_x, all_y)) {
+    front.x.push_back(all_x[i]);
+    front.y.push_back(all_y[i]);
+  }
+  a.series.push_back(front);
+  a.notes.push_back("Error at t = " + join_times(r.sample_times) + " s against a reference of the same model at h = " +
+                    fmt(r.reference_h) + " s, tol = " + fmt(r.reference_tol) + " m/s. Implicit methods: h = " +
+                    fmt(r.scene.h * 4) + " ... " + fmt(r.scene.h / 8) + " s; symplectic Euler: h <= " +
+                    fmt(r.scene.h / 10) + " s.");
+  add_failure_notes(r, in_h_sweep, "h", a.notes);
+  for (const std::string& f : r.reference_failures) a.notes.push_back(f);
+
+  // (B) error against h.
+  ChartSpec b;
+  b.title = "Convergence: implicit Euler without contact, fitted slope " + fmt(r.smooth_slope, "%.2f") +
+            " (first order = 1); with contact " + fmt(r.lecture_slope, "%.2f");
+  b.x_label = "time step h (s)";
+  b.y_label = "RMS node-position error / side length";
+  b.log_x = b.log_y = true;
+  double h_min = INFINITY, h_max = 0.0, e_at_min = NAN;
+  for (const Method& m : study_methods()) {
+    Series s;
+    s.label = m.label;
+    s.color = method_color(m.name);
+    for (const StudyRow& row : r.rows)
+      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) && row.error > 0.0) {
+        s.x.push_back(row.h);
+        s.y.push_back(row.error);
+      }
+    b.series.push_back(s);
+  }
+  {
+    Series s;
+    s.label = "classic check: lecture's method, same scene without ground and ceiling";
+    s.color = {0.0f, 0.0f, 0.0f};
+    for (const StudyRow& row : r.rows)
+      if (row.method == "lecture-no-contact" && std::isfinite(row.error) && row.error > 0.0) {
+        s.x.push_back(row.h);
+        s.y.push_back(row.error);
+        h_max = std::max(h_max, row.h);
+        if (row.h < h_min) {
+          h_min = row.h;
+          e_at_min = row.error;
+        }
+      }
+    b.series.push_back(s);
+  }
+  if (std::isfinite(e_at_min)) {
+    Series guide;
+    guide.label = "slope 1 (first order)";
+    guide.color = {0.45f, 0.45f, 0.45f};
+    guide.markers = false;
+    // Through the check's smallest-h point, offset below it so both stay visible.
+    for (double f : {1.0, h_max / h_min}) {
+      guide.x.push_back(h_min * f);
+      guide.y.push_back(0.5 * e_at_min * f);
+    }
+    b.series.push_back(guide);
+  }
+  b.notes.push_back("Fitted slopes of log(error) against log(h), lecture's method over all its h: " +
+                    fmt(r.smooth_slope, "%.3f") + " without contact (each against its own reference), " +
+                    fmt(r.lecture_slope, "%.3f") + " on the scene itself.");
+  b.notes.push_back("With contact, the barrier's stiff response at impact (a time scale of about a millisecond) "
+                    "and the numerical damping of the vibrations it starts dominate the error at these h; "
+                    "first order returns only for h well below that time scale.");
+  b.notes.push_back("The neo-Hookean implicit variants share one minimiser per step, so their errors coincide; "
+                    "they differ in cost and in where they fail.");
+  return stack_vertical({render_chart(a), render_chart(b)});
+}
+
+Image sweeps_chart(const StudyResult& r) {
+  ChartSpec c;
+  c.title = "Newton tolerance sweep at h = " + fmt(r.scene.h) + " s (" + r.scene.name + ")";
+  c.x_label = "wall-clock time per simulated second (s/s)";
+  c.y_label = "RMS node-position error / side length";
+  c.log_x = c.log_y = true;
+  std::string tols;
+  for (const Method& m : study_methods()) {
+    // Explicit methods have no tolerance: an empty, unlabelled series keeps every method's
+    // marker shape the same as in the other panels (shapes follow the series index).
+    Series s;
+    s.label = m.implicit() ? m.label : "";
+    s.color = method_color(m.name);
+    std::vector<std::tuple<double, double, double>> pts;  // tol, wall, error
+    for (const StudyRow& row : r.rows)
+      if (m.implicit() && row.method == m.name && in_tol_sweep(r, row) && std::isfinite(row.error) &&
+          row.error > 0.0)
+        pts.emplace_back(row.tol, row.wall_s, row.error);
+    std::sort(pts.begin(), pts.end());
+    for (const auto& [tol, wall, err] : pts) {
+      s.x.push_back(wall);
+      s.y.push_back(err);
+    }
+    c.series.push_back(s);
+  }
+  std::vector<double> tol_values;
+  for (const StudyRow& row : r.rows)
+    if (row.method == "lecture" && in_tol_sweep(r, row)) tol_values.push_back(row.tol);
+  std::sort(tol_values.begin(), tol_values.end());
+  c.notes.push_back("Newton stops when |p|_inf / h < tol; tol = " + join_times(tol_values) +
+                    " m/s. Looser is faster until the error of the unfinished solve exceeds the time-step error.");
+  add_failure_notes(r, in_tol_sweep, "tol", c.notes);
+
+  ChartSpec d;
+  d.title = "Mesh resolution, lecture's method at h = " + fmt(r.scene.h) + " s, against a " +
+            std::to_string(r.mesh_reference_n_seg) + "x" + std::to_string(r.mesh_reference_n_seg) +
+            " mesh at h = " + fmt(r.mesh_reference_h) + " s";
+  d.x_label = "wall-clock time per simulated second (s/s)";
+  d.y_label = "RMS error at the coarse nodes / side length";
+  d.log_x = d.log_y = true;
+  Series s;
+  s.label = "lecture's method; n_seg in the notes";
+  s.color = method_color("lecture");
+  for (const StudyRow& row : r.rows)
+    if (in_mesh_sweep(r, row)) {
+      if (std::isfinite(row.error) && row.error > 0.0) {
+        s.x.push_back(row.wall_s);
+        s.y.push_back(row.error);
+      }
+      d.notes.push_back("n_seg = " + std::to_string(row.n_seg) + ": " + row.failure +
+                        (std::isfinite(row.error) ? ", error " + fmt(row.error) : std::string()) + ", " +
+                        fmt(row.wall_s) + " s/s");
+    }
+  d.series.push_back(s);
+  d.notes.push_back("Coarse nodes are compared with the same material points of the fine mesh.");
+  for (const std::string& f : r.reference_failures) d.notes.push_back(f);
+  return stack_vertical({render_chart(c), render_chart(d)});
+}
+
+}  // namespace invfree

@@ -1,0 +1,130 @@
+#include "app/study/verdict.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/contact.h"
+
+namespace invfree {
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::Ok: return "ok";
+    case Verdict::Inverted: return "inverted";
+    case Verdict::Penetrated: return "penetrated";
+    case Verdict::NonFinite: return "non-finite";
+    case Verdict::NewtonFailed: return "newton-failed";
+    case Verdict::BlewUp: return "blew-up";
+    case Verdict::NotApplicable: return "n/a";
+  }
+  return "?";
+}
+
+Verdict verdict_from_status(StepStatus s) {
+  switch (s) {
+    case StepStatus::Ok: return Verdict::Ok;
+    case StepStatus::NewtonFailed:
+    case StepStatus::LinearSolveFailed: return Verdict::NewtonFailed;
+    case StepStatus::NonFinite: return Verdict::NonFinite;
+    case StepStatus::Inverted: return Verdict::Inverted;
+    case StepStatus::Penetrated: return Verdict::Penetrated;
+  }
+  return Verdict::NonFinite;
+}
+
+bool energy_exceeds_budget(double energy, double floor, double initial, double ceiling_work, double factor,
+                           double minimum_budget) {
+  if (!std::isfinite(energy)) return true;
+  const double budget = std::max(initial - floor + std::max(ceiling_work, 0.0), minimum_budget);
+  return energy - floor > factor * budget;
+}
+
+double ceiling_push(const Simulation& sim) {
+  const SceneDef& s = sim.scene;
+  if (!s.has_ceiling) return 0.0;
+  const BarrierParams b{s.dhat, s.kappa, s.contact_area()};
+  double f = 0.0;
+  for (int i = 0; i < sim.mesh.node_count(); ++i) {
+    const double d = sim.ceiling_y - sim.x[2 * i + 1];
+    if (d > 0.0 && d < s.dhat) f -= barrier_derivative(d, b);
+  }
+  return f;
+}
+
+double gravity_floor(const Simulation& sim) {
+  const SceneDef& s = sim.scene;
+  if (!s.has_gravity) return 0.0;
+  // The lowest gravity potential the nodes can reach: all at the ground (if the gravity
+  // points into it), otherwise at the lowest point seen so far, which the caller tracks.
+  double mass = 0.0;
+  for (double m : sim.node_mass) mass += m;
+  double lowest = s.has_ground ? s.ground_y : sim.x[1];
+  if (!s.has_ground)
+    for (int i = 0; i < sim.mesh.node_count(); ++i) lowest = std::min(lowest, sim.x[2 * i + 1]);
+  // total_energy's gravity term is -sum m g . x; its minimum over y >= lowest with x fixed
+  // in the direction of g's horizontal part is unbounded unless g is vertical, which every
+  // scene has; use the vertical part.
+  return -mass * s.gravity.y() * lowest;
+}
+
+void RunMonitor::start(const Simulation& sim, double duration) {
+  initial_energy = total_energy(sim);
+  floor = gravity_floor(sim);
+  ceiling_work = 0.0;
+  ceiling_force = ceiling_push(sim);
+  previous_ceiling = sim.ceiling_y;
+  double mass = 0.0;
+  for (double m : sim.node_mass) mass += m;
+  const double L = sim.scene.side;
+  minimum_budget = 1e-6 * mass * L * L;  // 1e-6 J per kg m^2 s^-2: far below any real motion
+  Vec2 c = Vec2::Zero();
+  for (int i = 0; i < sim.mesh.node_count(); ++i) c += sim.x.segment<2>(2 * i);
+  box_center = c / sim.mesh.node_count();
+  const double g = sim.scene.has_gravity ? sim.scene.gravity.norm() : 0.0;
+  box_radius = 10.0 * L + sim.scene.initial_velocity.norm() * duration + 0.5 * g * duration * duration;
+  const auto det = triangle_det_f(sim);
+  started_inverted = std::any_of(det.begin(), det.end(), [](double d) { return !(d > 0.0); });
+  recovered = !started_inverted;
+}
+
+Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
+  // Energy supplied by the ceiling over this step: its push (the larger of the two ends,
+  // an upper bound for a monotone barrier force) times how far it moved down.
+  const double push = ceiling_push(sim);
+  if (sim.scene.has_ceiling) {
+    ceiling_work += std::max(push, ceiling_force) * std::max(0.0, previous_ceiling - sim.ceiling_y);
+    previous_ceiling = sim.ceiling_y;
+  }
+  ceiling_force = push;
+  if (!sim.scene.has_ground) floor = std::min(floor, gravity_floor(sim));
+  for (int i = 0; i < sim.mesh.node_count(); ++i)
+    if ((sim.x.segment<2>(2 * i) - box_center).lpNorm<Eigen::Infinity>() > box_radius) {
+      *why = "node " + std::to_string(i) + " left the bounding box (" + std::to_string(box_radius) +
+             " m around the start)";
+      return Verdict::BlewUp;
+    }
+  const double e = total_energy(sim);
+  if (energy_exceeds_budget(e, floor, initial_energy, ceiling_work, factor, minimum_budget)) {
+    *why = "energy " + std::to_string(e - floor) + " J above the floor exceeds " + std::to_string(factor) +
+           "x what the start and the ceiling supplied (" +
+           std::to_string(initial_energy - floor + ceiling_work) + " J)";
+    return Verdict::BlewUp;
+  }
+  const auto det = triangle_det_f(sim);
+  const bool inverted = std::any_of(det.begin(), det.end(), [](double d) { return !(d > 0.0); });
+  if (!inverted) {
+    recovered = true;
+  } else if (recovered) {
+    *why = "a triangle reached det F <= 0";
+    return Verdict::Inverted;
+  }
+  return Verdict::Ok;
+}
+
+Verdict RunMonitor::at_end(std::string* why) const {
+  if (recovered) return Verdict::Ok;
+  *why = "started inverted and never recovered (det F <= 0 at the end)";
+  return Verdict::Inverted;
+}
+
+}  // namespace invfree
