@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libbenchmark-dev                           # tests, benchmarks
   libsuitesparse-dev libopenblas0-pthread                 # CHOLMOD direct solver
   libosmesa6-dev libglfw3-dev libimgui-dev libstb-dev     # offscreen and live rendering
+  zlib1g-dev                                              # PNG frames (deflate for stb_image_write)
   fonts-dejavu-core                                       # text in charts
   xvfb xauth                                              # live-mode tests without a display
   clang libclang-rt-14-dev                                # libFuzzer target

@@ -1,0 +1,45 @@
+#include "app/render/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace invfree::render {
+
+FrameLayout frame_layout(int width, int height, bool panel) {
+  FrameLayout l;
+  l.width = width;
+  l.height = height;
+  l.scale = std::min(width / 1280.0, height / 720.0);
+  const double panel_w = panel ? std::round(std::min(290.0 * l.scale, 0.45 * width)) : 0.0;
+  l.plot = {0.0, 0.0, width - panel_w, double(height)};
+  l.panel = {width - panel_w, 0.0, panel_w, double(height)};
+  return l;
+}
+
+WorldBox scene_world_box(const SceneDef& scene) {
+  const double half = 0.5 * scene.side;
+  double y0 = -half, y1 = half;
+  if (scene.has_ground) y0 = std::min(y0, scene.ground_y);
+  if (scene.has_ceiling) y1 = std::max(y1, scene.ceiling_y);
+  // Squashed between the planes down to the ceiling's stop gap, the square spreads
+  // sideways; at constant area it is side^2 / gap wide. Capped, for a stop at or
+  // below the ground.
+  double spread = 1.0;
+  if (scene.has_ground && scene.has_ceiling) {
+    const double gap = std::max(scene.ceiling_stop - scene.ground_y, 0.25 * scene.side);
+    spread = std::clamp(scene.side / gap, 1.0, 4.0);
+  }
+  const double band = std::max(0.15 * (y1 - y0), 0.1 * scene.side);  // visible plane depth
+  const double x_half = half * spread + 0.15 * scene.side;
+  return {-x_half, x_half, y0 - band, y1 + band};
+}
+
+Camera fit_camera(const WorldBox& box, const PixelRect& rect) {
+  Camera c;
+  c.pixels_per_metre = std::min(rect.w / (box.x1 - box.x0), rect.h / (box.y1 - box.y0));
+  const double cx = 0.5 * (box.x0 + box.x1), cy = 0.5 * (box.y0 + box.y1);
+  c.origin = Vec2(rect.x + 0.5 * rect.w - c.pixels_per_metre * cx, rect.y + 0.5 * rect.h + c.pixels_per_metre * cy);
+  return c;
+}
+
+}  // namespace invfree::render

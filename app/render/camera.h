@@ -1,0 +1,58 @@
+// Where things go in a frame. Inputs: the frame size in pixels and the scene definition.
+// Outputs: the frame layout (the plot area holding the world on the left, the panel with
+// the text and the colour bar on the right, and a size scale for fonts and lines) and the
+// camera mapping world metres (y up) to pixels (origin top-left, y down).
+//
+// The camera is fixed per scene: it is derived from the scene definition only (side,
+// ground, ceiling start and stop), never from the moving state, so a movie never jumps.
+// The box it frames holds the square at rest, the ground, the ceiling's start, a band of
+// each plane, and the widest the square can get when squashed to the ceiling's stop gap
+// at constant area (det F <= 1 under compression). A body that leaves that box (a free
+// fall with no ground) leaves the picture.
+#pragma once
+
+#include "core/scene.h"
+#include "core/types.h"
+
+namespace invfree::render {
+
+struct PixelRect {
+  double x = 0, y = 0, w = 0, h = 0;  // top-left corner and size
+};
+
+struct FrameLayout {
+  int width = 0, height = 0;
+  double scale = 1.0;  // sizes are designed at 1280x720: min(width/1280, height/720)
+  PixelRect plot;      // the world
+  PixelRect panel;     // text and colour bar
+};
+
+// With `panel` false the plot takes the whole frame.
+FrameLayout frame_layout(int width, int height, bool panel = true);
+
+struct WorldBox {
+  double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+};
+
+WorldBox scene_world_box(const SceneDef& scene);
+
+struct Camera {
+  double pixels_per_metre = 1.0;
+  Vec2 origin = Vec2::Zero();  // pixel position of the world origin
+  Vec2 to_pixel(const Vec2& world) const {
+    return {origin.x() + pixels_per_metre * world.x(), origin.y() - pixels_per_metre * world.y()};
+  }
+  Vec2 to_world(const Vec2& pixel) const {
+    return {(pixel.x() - origin.x()) / pixels_per_metre, (origin.y() - pixel.y()) / pixels_per_metre};
+  }
+};
+
+// The largest uniform scale showing all of `box` inside `rect`, centred.
+Camera fit_camera(const WorldBox& box, const PixelRect& rect);
+
+// The camera of a scene in a frame of this layout.
+inline Camera scene_camera(const SceneDef& scene, const FrameLayout& layout) {
+  return fit_camera(scene_world_box(scene), layout.plot);
+}
+
+}  // namespace invfree::render

@@ -1,0 +1,70 @@
+#include "app/render/frame_text.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "app/colormap.h"
+
+namespace invfree::render {
+
+std::string format_si(double value, const char* unit) {
+  static constexpr struct {
+    double factor;
+    const char* prefix;
+  } kPrefixes[] = {{1e9, "G"}, {1e6, "M"}, {1e3, "k"}, {1.0, ""}, {1e-3, "m"}};
+  char buf[64];
+  if (!std::isfinite(value)) {
+    std::snprintf(buf, sizeof buf, "%g %s", value, unit);
+    return buf;
+  }
+  const double a = std::fabs(value);
+  for (const auto& p : kPrefixes) {
+    // Round to three significant digits first, so that 999.6 becomes "1.00 k", not "1000".
+    if (a == 0.0 || a >= p.factor * 0.9995 || p.factor == 1e-3) {
+      const double v = value / p.factor;
+      const double av = std::fabs(v);
+      const int decimals = av >= 99.95 ? 0 : av >= 9.995 ? 1 : 2;
+      std::snprintf(buf, sizeof buf, "%.*f %s%s", a == 0.0 ? 0 : decimals, v, p.prefix, unit);
+      return buf;
+    }
+  }
+  return "";
+}
+
+std::string format_time(double t, double h) {
+  int decimals = 2;
+  if (h > 0.0) decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(h) - 1e-9)), 2, 6);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "t = %.*f s", decimals, t);
+  return buf;
+}
+
+const char* model_display_name(Model m) {
+  switch (m) {
+    case Model::NeoHookean: return "neo-Hookean";
+    case Model::Linear: return "linear";
+    case Model::Arap: return "ARAP";
+    case Model::StableNeoHookean: return "stable neo-Hookean";
+  }
+  return "?";
+}
+
+std::vector<ColorBarTick> color_bar_ticks(double range) {
+  std::vector<ColorBarTick> ticks;
+  const int n = static_cast<int>(std::floor(std::log2(range) + 1e-9));
+  const int stride = 2 * n + 1 > 9 ? 2 : 1;
+  for (int k = -n; k <= n; ++k) {
+    if (k % stride != 0) continue;
+    ColorBarTick t;
+    t.value = std::ldexp(1.0, k);
+    t.position = det_f_scale_position(t.value, range);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", t.value);
+    t.label = buf;
+    ticks.push_back(t);
+  }
+  return ticks;
+}
+
+}  // namespace invfree::render

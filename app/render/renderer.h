@@ -1,0 +1,114 @@
+// The renderer: draws one simulation state as a figure into its own framebuffer of a
+// fixed size, the same way live (GLFW window) and offscreen (OSMesa), so both agree pixel
+// for pixel on the same GL implementation.
+//
+// What a frame shows (layout in camera.h, words in frame_text.h):
+//  - every triangle filled with det_f_color(det F) (app/colormap.h): blue compression,
+//    white at det F = 1, red stretch, green det F <= 0;
+//  - the triangle edges (DrawOptions::edges) and the body's outline;
+//  - the ground and the ceiling as hatched half-planes;
+//  - a side panel: scene name, model, mu, lambda, t, step, min/max det F (and the count of
+//    inverted triangles when there are any), and the colour bar with numeric ticks,
+//    markers at the current min and max, and the det F <= 0 swatch.
+// Nothing depends on the wall clock, so the same state gives the same picture.
+//
+// Antialiasing is analytic, so it is the same on every OpenGL implementation and costs
+// no multisampling (which under llvmpipe costs more than the rest of the frame): strokes
+// (mesh edges, the body's outline, the plane surfaces) get a one-pixel coverage ramp in
+// the shader, the hatching is antialiased by distance, text is pixel-aligned
+// stb_truetype coverage, and the fills' own edges lie under strokes. (create's
+// max_samples can add multisampling on a hardware GL.)
+//
+// GL use: only through GlApi (gl_api.h). Needs a current OpenGL 3.3 context (core or
+// compatibility profile) for create, draw, read_pixels, blit_to and the destructor. draw
+// binds its own framebuffer, program, vertex array and texture, and restores the draw and
+// read framebuffer bindings and the viewport it found; it leaves no program, vertex array
+// or texture bound and GL_BLEND, GL_SCISSOR_TEST and GL_MULTISAMPLE as it found them.
+//
+// Use:
+//   auto r = Renderer::create(get_proc_address, 1280, 720, &error);
+//   r->draw(capture_frame_state(sim));
+//   r->read_pixels(&rgba);            // offscreen: RGBA8, bottom row first
+//   r->blit_to(0, 0, 0, w, h);        // live: copy the frame into the window
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/render/camera.h"
+#include "app/render/gl_proc.h"
+#include "core/simulation.h"
+
+namespace invfree::render {
+
+// What one frame shows, copied out of a Simulation (so a frame can be drawn while the
+// simulation goes on, e.g. on another thread).
+struct FrameState {
+  SceneDef scene;
+  VecX x;  // 2N node positions
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<double> det_f;  // per triangle
+  double ceiling_y = 0.0;
+  double time = 0.0;
+  long step = 0;
+};
+
+FrameState capture_frame_state(const Simulation& sim);
+
+struct DrawOptions {
+  bool edges = true;  // triangle edges (the outline is always drawn)
+  bool panel = true;  // the side panel (text, colour bar); false: the world fills the frame
+  // Replaces the scene's fixed camera (a live view's pan and zoom); pixels of this frame.
+  std::optional<Camera> camera;
+};
+
+struct GlResources;
+
+class Renderer {
+ public:
+  // Loads GL through `get_proc_address` from the current context and builds the
+  // shaders, the font atlas and a width x height framebuffer. Returns null and a
+  // one-line *error on failure. `max_samples` > 1 adds multisampling on top of the
+  // analytic antialiasing; the default (1) is what `invfree render` and the goldens use,
+  // and what makes a live frame equal an offscreen one (under llvmpipe 4x also costs
+  // ~20 ms per 1280x720 frame).
+  static std::unique_ptr<Renderer> create(GlGetProcAddress get_proc_address, int width, int height,
+                                          std::string* error, int max_samples = 1);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Changes the frame size (framebuffers and font sizes follow). Returns "" or an error.
+  std::string resize(int width, int height);
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int samples() const;  // multisampling used (1: none)
+  // The layout of a frame with or without the panel.
+  FrameLayout layout(bool panel = true) const { return frame_layout(width(), height(), panel); }
+  // The fixed camera of `scene` (for picking: camera.to_world(pixel)).
+  Camera camera(const SceneDef& scene, bool panel = true) const { return scene_camera(scene, layout(panel)); }
+
+  void draw(const FrameState& state, const DrawOptions& options = {});
+
+  // The last drawn frame, RGBA8, width * height * 4 bytes, bottom row first (GL order).
+  void read_pixels(std::vector<std::uint8_t>* rgba_bottom_up) const;
+  // The last drawn frame as a GL texture (RGBA8, bottom row first), e.g. for ImGui::Image
+  // with uv0 = (0, 1), uv1 = (1, 0).
+  unsigned texture() const;
+  // Copies the last frame into framebuffer `target` (0: the window's) at the rectangle
+  // (x, y, w, h) in that framebuffer's GL coordinates (origin bottom-left); scaled with
+  // linear filtering when w x h differs from the frame size.
+  void blit_to(unsigned target, int x, int y, int w, int h) const;
+
+ private:
+  Renderer();
+  std::unique_ptr<GlResources> gl_;
+  int width_ = 0, height_ = 0;
+  int max_samples_ = 1;
+};
+
+}  // namespace invfree::render

@@ -1,0 +1,333 @@
+// `invfree render`: steps a scene and writes one PNG per frame through the offscreen
+// renderer (OSMesa: no display, no X server), optionally also an MP4 through ffmpeg.
+// Frame 0 is the initial state; frame i is the state after i * steps-per-frame steps.
+//
+// Pipeline (so that simulation, drawing and PNG encoding overlap on two cores): a thread
+// steps the simulation and queues each frame's state; the main thread (which owns the GL
+// context) draws it and reads the pixels back; a FrameWriter thread encodes and writes
+// the PNG. So a frame costs about the largest of the three, not their sum.
+// Progress (frame i/N, elapsed, ETA) goes to stderr when it is a terminal; a one-line
+// summary to stdout.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/interrupt.h"
+#include "app/output_files.h"
+#include "app/render/frame_writer.h"
+#include "app/render/offscreen_context.h"
+#include "app/render/renderer.h"
+#include "app/scene_options.h"
+#include "core/simulation.h"
+
+namespace invfree {
+
+namespace {
+
+struct RenderOptions {
+  SceneOptions scene;
+  int frames = 300;
+  int steps_per_frame = 1;
+  std::string out = "frames";
+  std::string size = "1280x720";
+  bool no_edges = false;
+  bool mp4 = false;
+  double fps = 0.0;  // 0: real time
+  bool force = false;
+  int png_level = 1;
+  int writer_threads = 1;
+};
+
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "invfree: %s\n", message.c_str());
+  return code;
+}
+
+// "1280x720" -> (1280, 720); false when malformed or outside 64..8192.
+bool parse_size(const std::string& text, int* width, int* height) {
+  static const std::regex pattern("([0-9]{1,5})[xX]([0-9]{1,5})");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern)) return false;
+  *width = std::stoi(m[1]);
+  *height = std::stoi(m[2]);
+  return *width >= 64 && *height >= 64 && *width <= 8192 && *height <= 8192;
+}
+
+// The full path of `program` on PATH, or "".
+std::string find_on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return "";
+  std::string dirs = path;
+  size_t start = 0;
+  while (start <= dirs.size()) {
+    const size_t end = std::min(dirs.find(':', start), dirs.size());
+    const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
+    const std::string candidate = dir + "/" + program;
+    if (::access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate)) return candidate;
+    start = end + 1;
+  }
+  return "";
+}
+
+std::string frame_name(int i) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame_%06d.png", i);
+  return buf;
+}
+
+// Runs ffmpeg over DIR/frame_%06d.png into DIR/movie.mp4 (H.264, yuv420p, dimensions
+// padded to even numbers with white, as yuv420p needs). Written under a temporary name
+// and renamed when ffmpeg succeeded. Returns "" or a one-line error.
+std::string make_movie(const std::string& ffmpeg, const std::string& dir, double fps) {
+  const std::string tmp = dir + "/movie.tmp" + std::to_string(::getpid()) + ".mp4";
+  const std::string final_path = dir + "/movie.mp4";
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%.6g", fps);
+  std::vector<std::string> args = {ffmpeg, "-nostdin", "-y", "-loglevel", "error", "-framerate", rate,
+                                   "-i", dir + "/frame_%06d.png",
+                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white",
+                                   "-c:v", "libx264", "-pix_fmt", "yuv420p", "-movflags", "+faststart",
+                                   "-f", "mp4", tmp};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) return "cannot start ffmpeg: fork failed";
+  if (pid == 0) {
+    ::execv(argv[0], argv.data());
+    std::_Exit(127);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return "ffmpeg: waitpid failed";
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::filesystem::remove(tmp);
+    return "ffmpeg could not make " + final_path + " (exit status " +
+           std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "; its message is above)";
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, final_path, ec);
+  if (ec) return final_path + ": cannot rename into place: " + ec.message();
+  return "";
+}
+
+// Steps the simulation on its own thread and hands over a FrameState per frame (frame 0:
+// the initial state) through a short queue, so that the next frame is being simulated
+// while this one is drawn and encoded.
+class SimulationThread {
+ public:
+  SimulationThread(Simulation& sim, int frames, int steps_per_frame)
+      : sim_(sim), frames_(frames), steps_per_frame_(steps_per_frame), thread_([this] { run(); }) {}
+  ~SimulationThread() { stop(); }
+
+  // The next frame's state; false when there is none (all produced, a step failed, or
+  // interrupted).
+  bool next(render::FrameState* state) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return !queue_.empty() || done_; });
+    if (queue_.empty()) return false;
+    *state = std::move(queue_.front());
+    queue_.pop_front();
+    changed_.notify_all();
+    return true;
+  }
+  // Stops and joins the thread; returns the failed step's report (status Ok otherwise).
+  StepReport stop() {
+    {
+      std::lock_guard lock(mutex_);  // so that a waiting run() cannot miss the change
+      stopping_ = true;
+    }
+    changed_.notify_all();
+    if (thread_.joinable()) thread_.join();
+    return failure_;
+  }
+
+ private:
+  void run() {
+    for (int f = 0; f < frames_; ++f) {
+      if (f > 0) {
+        for (int k = 0; k < steps_per_frame_; ++k) {
+          if (interrupted() || stopping_) return finish();
+          const StepReport r = step(sim_);
+          if (r.status != StepStatus::Ok) {
+            failure_ = r;
+            return finish();
+          }
+        }
+      }
+      render::FrameState state = render::capture_frame_state(sim_);
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [&] { return queue_.size() < kCapacity || stopping_; });
+      if (stopping_) break;
+      queue_.push_back(std::move(state));
+      changed_.notify_all();
+    }
+    finish();
+  }
+  void finish() {
+    std::lock_guard lock(mutex_);
+    done_ = true;
+    changed_.notify_all();
+  }
+
+  static constexpr size_t kCapacity = 2;
+  Simulation& sim_;
+  const int frames_, steps_per_frame_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<render::FrameState> queue_;
+  bool done_ = false;
+  std::atomic<bool> stopping_{false};
+  StepReport failure_;
+  std::thread thread_;  // last: starts once everything above is initialised
+};
+
+class Progress {
+ public:
+  Progress(int total) : total_(total), tty_(::isatty(STDERR_FILENO) != 0) {}
+  void update(int done, double elapsed) {
+    if (!tty_ || (elapsed - last_ < 0.1 && done < total_)) return;
+    last_ = elapsed;
+    const double eta = done > 0 ? elapsed / done * (total_ - done) : 0.0;
+    std::fprintf(stderr, "\r\033[Krender: frame %d/%d  %.1f s elapsed  ETA %.1f s", done, total_, elapsed, eta);
+    std::fflush(stderr);
+    shown_ = true;
+  }
+  void clear() {
+    if (shown_) std::fprintf(stderr, "\r\033[K");
+    shown_ = false;
+  }
+
+ private:
+  int total_;
+  bool tty_;
+  bool shown_ = false;
+  double last_ = -1.0;
+};
+
+int run_render(const RenderOptions& opt) {
+  std::string error;
+  auto scene = opt.scene.resolve(&error);
+  if (!scene) return fail(exit_code::kBadInput, error);
+  int width = 0, height = 0;
+  if (!parse_size(opt.size, &width, &height))
+    return fail(exit_code::kBadInput, "--size: expected WIDTHxHEIGHT with each in 64..8192, got \"" + opt.size + "\"");
+  std::string ffmpeg;
+  if (opt.mp4) {
+    ffmpeg = find_on_path("ffmpeg");
+    if (ffmpeg.empty())
+      return fail(exit_code::kBadInput,
+                  "--mp4 needs ffmpeg, which is not on PATH (install it: sudo apt-get install ffmpeg; or leave out "
+                  "--mp4 to write the PNG frames only)");
+  }
+  const double fps = opt.fps > 0.0 ? opt.fps : 1.0 / (scene->h * opt.steps_per_frame);
+  {
+    bool refused = false;
+    if (auto e = prepare_output_directory(opt.out, true, opt.force, &refused); !e.empty())
+      return fail(refused ? exit_code::kBadInput : exit_code::kOutputFailed, e);
+  }
+
+  auto context = render::OffscreenContext::create(&error);
+  if (!context) return fail(exit_code::kOutputFailed, "offscreen rendering: " + error);
+  auto renderer = render::Renderer::create(context->get_proc_address(), width, height, &error);
+  if (!renderer) return fail(exit_code::kOutputFailed, "offscreen rendering: " + error);
+  install_interrupt_handler();
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  Simulation sim = make_simulation(*scene);
+  render::FrameWriter writer(opt.writer_threads, opt.png_level);
+  render::DrawOptions draw_options;
+  draw_options.edges = !opt.no_edges;
+  Progress progress(opt.frames);
+  double det_lo = 1.0, det_hi = 1.0;
+  int frames = 0;
+  StepReport failure;
+  {
+    SimulationThread producer(sim, opt.frames, opt.steps_per_frame);
+    render::FrameState state;
+    while (!interrupted() && producer.next(&state)) {
+      const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
+      det_lo = frames == 0 ? *lo : std::min(det_lo, *lo);
+      det_hi = frames == 0 ? *hi : std::max(det_hi, *hi);
+      renderer->draw(state, draw_options);
+      std::vector<std::uint8_t> pixels = writer.take_buffer();
+      renderer->read_pixels(&pixels);
+      if (!writer.submit(opt.out + "/" + frame_name(frames), width, height, std::move(pixels))) break;
+      ++frames;
+      progress.update(frames, elapsed());
+    }
+    failure = producer.stop();  // joins; the simulation is ours again
+  }
+  const std::string write_error = writer.finish();
+  const double seconds = elapsed();
+  progress.clear();
+  if (!write_error.empty()) return fail(exit_code::kOutputFailed, write_error);
+
+  std::string movie;
+  if (opt.mp4 && failure.status == StepStatus::Ok && !interrupted() && frames > 0) {
+    if (auto e = make_movie(ffmpeg, opt.out, fps); !e.empty()) return fail(exit_code::kOutputFailed, e);
+    movie = ", " + opt.out + "/movie.mp4";
+  }
+  std::printf("%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, det F in [%.4f, %.4f]\n",
+              sim.scene.name.c_str(), frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
+              frame_name(std::max(frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time, seconds,
+              seconds > 0 ? frames / seconds : 0.0, det_lo, det_hi);
+  if (failure.status != StepStatus::Ok)
+    return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) + " failed: " +
+                                           step_status_name(failure.status) + ": " + failure.message);
+  if (interrupted())
+    return fail(exit_code::kInterrupted, "interrupted after frame " + std::to_string(frames) +
+                                             "; the frames written are complete");
+  return exit_code::kOk;
+}
+
+}  // namespace
+
+void register_render_command(CLI::App& app, int& exit_code) {
+  auto opt = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "render",
+      "render a scene offscreen (no display needed) to DIR/frame_000000.png ... (frame 0: the initial state)");
+  opt->scene.add_to(cmd);
+  cmd->add_option("--frames", opt->frames, "number of frames, the initial state included")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--steps-per-frame", opt->steps_per_frame, "time steps between frames")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--out", opt->out, "output directory (must be empty or new, see --force)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  cmd->add_option("--size", opt->size, "frame size in pixels")->type_name("WxH")->capture_default_str();
+  cmd->add_flag("--no-edges", opt->no_edges, "do not draw the triangle edges");
+  cmd->add_flag("--mp4", opt->mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");
+  cmd->add_option("--fps", opt->fps, "frame rate of movie.mp4 (default: real time, 1 / (h * steps-per-frame))")
+      ->check(CLI::Range(0.1, 1000.0));
+  cmd->add_option("--png-level", opt->png_level, "PNG compression level (stb_image_write; 1 is fastest)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 9));
+  cmd->add_flag("--force", opt->force, "write into a non-empty output directory (overwriting frames)");
+  cmd->callback([opt, &exit_code] { exit_code = run_render(*opt); });
+}
+
+}  // namespace invfree
