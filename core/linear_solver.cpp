@@ -292,21 +292,89 @@ struct LinearSolver::Impl {
   bool refresh = false;
   double factor_cost = 0.0;  // flops of one numeric factorisation
   double iter_cost = 0.0;    // flops of one PCG iteration (a solve, a product, vector work)
-  VecX r, z, p, hp;
+  VecX r, z, p, hp, t;
+  // Diagonal correction of the reused factor (see prepare_correction).
+  std::vector<int> diag_pos;     // position of H(i, i) in the value array
+  VecX factored_diag;            // diag(H) when the factor was computed
+  std::vector<int> changed;      // unknowns whose diagonal moved by more than 10% since
+  std::vector<char> is_changed;
+  VecX smoother;                 // omega_i / H(i, i) on `changed`
 
   bool factorize(const SpMat& h, LinearSolveStats& stats) {
-    const auto t = Clock::now();
+    const auto t0 = Clock::now();
     const bool ok = cholmod ? chol.factorize(h) : ldlt.factorize(h);
-    stats.factor_ms += ms_since(t);
+    stats.factor_ms += ms_since(t0);
     ++stats.factorizations;
     have_factor = ok;
     refresh = false;
+    const double* v = h.valuePtr();
+    for (std::size_t i = 0; i < diag_pos.size(); ++i) factored_diag[i] = v[diag_pos[i]];
     return ok;
   }
 
   bool apply_factor(const VecX& b, VecX& x) {
     if (cholmod) return chol.solve(b, x);
     ldlt.solve(b, x);
+    return true;
+  }
+
+  // The reused factor B = A_old^-1 goes stale mostly through a few diagonal entries: the
+  // contact barriers' and friction's stiffness on the nodes near a plane change by large
+  // factors from one iteration to the next, the elasticity only slowly. Those unknowns C
+  // (diagonal moved by more than 10%) get a Jacobi smoother S = W D_C^-1 around B, the
+  // symmetric multiplicative combination
+  //   z = S r;  z += B (r - H z);  z += S (r - H z)
+  // i.e. M^-1 = (I - S H) B (I - H S) + S (2 S^-1 - H) S, symmetric positive definite
+  // when 2 S^-1 - H_CC is. The weights w_i = min(1, 1.9 / (1 + R_i)), R_i the Gershgorin
+  // radius of row i of D^-1/2 H_CC D^-1/2, make 2 S^-1 - H_CC diagonally dominant, so
+  // it is. Measured at n_seg 64 during compression: 4 PCG iterations (relative residual
+  // 1e-2) with a factor 9 steps old, against 28 without the correction.
+  void prepare_correction(const SpMat& h) {
+    const int n = static_cast<int>(diag_pos.size());
+    const double* v = h.valuePtr();
+    const int* outer = h.outerIndexPtr();
+    const int* inner = h.innerIndexPtr();
+    for (int i : changed) is_changed[i] = 0;
+    changed.clear();
+    for (int i = 0; i < n; ++i) {
+      const double d = v[diag_pos[i]];
+      if (std::abs(d - factored_diag[i]) > 0.1 * factored_diag[i]) {
+        changed.push_back(i);
+        is_changed[i] = 1;
+      }
+    }
+    for (int i : changed) {
+      const double di = v[diag_pos[i]];
+      double radius = 0.0;
+      for (int k = outer[i]; k < outer[i + 1]; ++k) {
+        const int j = inner[k];
+        if (j != i && is_changed[j]) radius += std::abs(v[k]) / std::sqrt(di * v[diag_pos[j]]);
+      }
+      smoother[i] = std::min(1.0, 1.9 / (1.0 + radius)) / di;
+    }
+  }
+
+  // out = M^-1 in (see prepare_correction); `out` must not alias `in`.
+  bool apply_preconditioner(const SpMat& h, const VecX& in, VecX& out) {
+    if (changed.empty()) return apply_factor(in, out);
+    const double* v = h.valuePtr();
+    const int* outer = h.outerIndexPtr();
+    const int* inner = h.innerIndexPtr();
+    // t = in - H z1 with z1 = S in (nonzero on C only: columns of C).
+    t = in;
+    for (int i : changed) {
+      const double zi = smoother[i] * in[i];
+      for (int k = outer[i]; k < outer[i + 1]; ++k) t[inner[k]] -= v[k] * zi;
+    }
+    if (!apply_factor(t, out)) return false;
+    for (int i : changed) out[i] += smoother[i] * in[i];
+    // out += S (in - H out), rows of C only (H is symmetric: row i = column i).
+    for (int i : changed) {
+      double hz = 0.0;
+      for (int k = outer[i]; k < outer[i + 1]; ++k) hz += v[k] * out[inner[k]];
+      t[i] = in[i] - hz;
+    }
+    for (int i : changed) out[i] += smoother[i] * t[i];
     return true;
   }
 
@@ -318,7 +386,8 @@ struct LinearSolver::Impl {
     const double b_norm = b.norm();
     if (b_norm == 0.0) return 1;
     r = b;
-    if (!apply_factor(r, z)) return -1;
+    prepare_correction(h);
+    if (!apply_preconditioner(h, r, z)) return -1;
     p = z;
     double rz = r.dot(z);
     const bool decide = req.threshold > 0.0 && req.lambda_min > 0.0;
@@ -331,24 +400,23 @@ struct LinearSolver::Impl {
       ++stats.pcg_iterations;
       const double r_norm = r.norm();
       if (r_norm <= 1e-13 * b_norm) return 1;  // as accurate as a direct solve
-      if (decide) {
-        auto settled = [&](double residual_norm) {
-          const double x_inf = x.lpNorm<Eigen::Infinity>();
-          const double bound = residual_norm / req.lambda_min;
-          return x_inf + bound < req.threshold ||
-                 (x_inf - bound >= req.threshold && residual_norm <= req.forcing * b_norm);
+      if (decide && x.lpNorm<Eigen::Infinity>() < req.threshold) {
+        // Newton would stop: only when the exact solution certainly would too.
+        auto certain = [&](double residual_norm) {
+          return x.lpNorm<Eigen::Infinity>() + residual_norm / req.lambda_min < req.threshold;
         };
-        if (settled(r_norm)) {
+        if (certain(r_norm)) {
           // Confirm with the true residual b - H x (CG's recurrence drifts by rounding).
           multiply(h, x, hp);
           z = b - hp;
-          if (settled(z.norm())) return 1;
+          if (certain(z.norm())) return 1;
         }
       } else if (r_norm <= req.forcing * b_norm) {
-        return 1;
+        return 1;  // Newton goes on with this direction (an inexact Newton step)
       }
-      if (!apply_factor(r, z)) return -1;
+      if (!apply_preconditioner(h, r, z)) return -1;
       const double rz_next = r.dot(z);
+      if (!(rz_next > 0.0)) return -1;
       const double beta = rz_next / rz;
       rz = rz_next;
       p = z + beta * p;
@@ -397,6 +465,17 @@ void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool posit
   s.z.resize(n);
   s.p.resize(n);
   s.hp.resize(n);
+  s.t.resize(n);
+  s.diag_pos.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const int* begin = pattern.innerIndexPtr() + pattern.outerIndexPtr()[i];
+    const int* end = pattern.innerIndexPtr() + pattern.outerIndexPtr()[i + 1];
+    s.diag_pos[i] = static_cast<int>(std::lower_bound(begin, end, i) - pattern.innerIndexPtr());
+  }
+  s.factored_diag.resize(n);
+  s.changed.reserve(n);
+  s.is_changed.assign(n, 0);
+  s.smoother.resize(n);
 }
 
 const char* LinearSolver::backend_name() const {

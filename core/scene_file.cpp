@@ -269,6 +269,11 @@ const KeySpec kKeys[] = {
        return set_enum<Integrator>(n, s.integrator, integrator_from_name,
                                    "\"implicit-euler\", \"symplectic-euler\"");
      }},
+    {"solver", "linear_solver",
+     [](SceneDef& s, const toml::node& n) {
+       return set_enum<LinearSolverKind>(n, s.linear_solver, linear_solver_from_name,
+                                         "\"auto\", \"ldlt\", \"cholmod\", \"pcg\"");
+     }},
     {"initial", "velocity",
      [](SceneDef& s, const toml::node& n) { return read_vec2(n, s.initial_velocity); }},
     {"gravity", "enabled", [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_gravity); }},
@@ -590,7 +595,7 @@ std::string scene_to_toml(const SceneDef& s) {
   o << "\n[time]\nh = " << s.h << "\ntol = " << s.tol << "\nmax_newton = " << s.max_newton << "\n";
   o << "\n[solver]\nprojection = \"" << projection_name(s.projection) << "\"\ninversion_filter = "
     << (s.inversion_filter ? "true" : "false") << "\nintegrator = \"" << integrator_name(s.integrator)
-    << "\"\n";
+    << "\"\nlinear_solver = \"" << linear_solver_name(s.linear_solver) << "\"\n";
   o << "\n[initial]\nvelocity = " << vec(s.initial_velocity) << "\n";
   o << "\n[gravity]\n" << enabled(s.has_gravity) << "g = " << vec(s.gravity) << "\n";
   o << "\n[ground]\n" << enabled(s.has_ground) << "y = " << s.ground_y << "\nfriction = " << s.friction << "\n";

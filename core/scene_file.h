@@ -6,7 +6,8 @@
 //              E, nu  -- or --  mu, lambda
 //   [time]     h, tol, max_newton
 //   [solver]   projection ("diagonal" | "full" | "none"), inversion_filter,
-//              integrator ("implicit-euler" | "symplectic-euler")
+//              integrator ("implicit-euler" | "symplectic-euler"),
+//              linear_solver ("auto" | "ldlt" | "cholmod" | "pcg")
 //   [initial]  velocity = [vx, vy]
 //   [gravity]  g = [gx, gy]
 //   [ground]   y, friction

@@ -177,6 +177,7 @@ const std::map<std::string, Kind>& key_kinds() {
       {"time.tol", Kind::Number},           {"time.max_newton", Kind::Integer},
       {"solver.projection", Kind::Enum},    {"solver.inversion_filter", Kind::Bool},
       {"solver.integrator", Kind::Enum},    {"initial.velocity", Kind::Vec2},
+      {"solver.linear_solver", Kind::Enum},
       {"gravity.enabled", Kind::Bool},      {"gravity.g", Kind::Vec2},
       {"ground.enabled", Kind::Bool},       {"ground.y", Kind::Number},
       {"ground.friction", Kind::Number},    {"ceiling.enabled", Kind::Bool},
