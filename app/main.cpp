@@ -15,15 +15,17 @@ int main(int argc, char** argv) {
       "Exit codes: 0 ok, 2 bad input (command line, scene file, --set), 3 a step failed "
       "(Newton cap, non-finite values, broken invariant), 4 an output could not be written, "
       "130 interrupted."};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);  // none: the live window (app/live_command.cpp)
   app.set_help_all_flag("--help-all", "show help for every command");
   int exit_code = invfree::exit_code::kOk;
   invfree::register_simulate_command(app, exit_code);
   invfree::register_render_command(app, exit_code);
   invfree::register_study_command(app, exit_code);
   invfree::register_stability_command(app, exit_code);
+  invfree::register_live_command(app, exit_code);
   try {
     app.parse(argc, argv);
+    if (app.get_subcommands().empty()) return invfree::run_default_command();
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

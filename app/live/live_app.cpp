@@ -527,6 +527,7 @@ void LiveApp::frame(const Injection* inject, Image* capture) { impl_->frame(inje
 bool LiveApp::should_close() const { return glfwWindowShouldClose(impl_->window); }
 long LiveApp::frames_drawn() const { return impl_->frames; }
 LiveController& LiveApp::controller() { return *impl_->controller; }
+Vec2 LiveApp::to_window(const Vec2& world) const { return impl_->view.to_screen(world) / impl_->pixel_scale(); }
 const std::map<std::string, WidgetRect>& LiveApp::widget_rects() const { return impl_->panel.rects; }
 const std::vector<std::string>& LiveApp::messages() const { return impl_->messages; }
 

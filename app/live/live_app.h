@@ -78,6 +78,8 @@ class LiveApp {
   long frames_drawn() const;
 
   LiveController& controller();
+  // Window coordinates (ImGui's, y down) of a world point in the current view.
+  Vec2 to_window(const Vec2& world) const;
   // Last frame's rectangle of a named widget ("mu", "lambda", "play", ...), if drawn.
   const std::map<std::string, WidgetRect>& widget_rects() const;
   // Messages printed for the user (screenshot paths, recording start/stop), also kept here.

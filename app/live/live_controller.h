@@ -58,7 +58,7 @@ class LiveController {
   void restore_scene_defaults() { select_scene(selected_); }
 
   // --- the grab spring: node `node` pulled toward `target` while dragging
-  double pull_stiffness = 2e4;  // N/m
+  double pull_stiffness = 1e5;  // N/m: the demo's square (1000 kg) hangs ~0.1 m below the cursor
   void begin_pull(int node, const Vec2& target);
   void move_pull(const Vec2& target);
   void end_pull();

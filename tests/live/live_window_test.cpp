@@ -220,3 +220,74 @@ TEST(LiveWindow, RecordingWritesTheRenderNaming) {
 
 }  // namespace
 }  // namespace invfree::live
+
+namespace invfree::live {
+namespace {
+
+TEST(LiveWindow, DraggingANodePullsItOnlyWhileHeld) {
+  LiveOptions o;
+  o.scenes = {{"drop", *find_builtin_scene("drop")}};
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  app->frame();
+  const SceneDef& s = app->controller().settings();
+  const int node = s.n_seg * (s.n_seg + 1) + s.n_seg;  // top right corner
+  const Vec2 start = app->controller().simulation().x.segment<2>(2 * node);
+  const Vec2 p = app->to_window(start);
+  Injection in;
+  in.x = static_cast<float>(p.x());
+  in.y = static_cast<float>(p.y());
+  app->frame(&in);  // hover
+  in.down[0] = true;
+  app->frame(&in);  // press on the node: grabbed
+  ASSERT_TRUE(app->controller().pulling());
+  EXPECT_EQ(app->controller().pull_node(), node);
+  in.x += 120.0f;  // drag up and to the right, and hold there
+  in.y -= 160.0f;
+  for (int k = 0; k < 40; ++k) app->frame(&in);
+  const Vec2 target = app->controller().pull_target();
+  const Vec2 now = app->controller().simulation().x.segment<2>(2 * node);
+  // Held up against gravity by the spring, close to the cursor (the default stiffness
+  // lets the square's weight stretch it by about a tenth of a metre).
+  EXPECT_LT((now - target).norm(), 0.5 * (start - target).norm()) << now.transpose() << " " << target.transpose();
+  EXPECT_GT(now.x(), start.x());
+  EXPECT_GT(now.y(), start.y());
+  in.down[0] = false;
+  app->frame(&in);
+  EXPECT_FALSE(app->controller().pulling());
+  EXPECT_FALSE(app->controller().simulation().pull.on);
+}
+
+TEST(LiveWindow, WheelZoomsAndFRestoresTheView) {
+  LiveOptions o;
+  o.paused = true;
+  o.hide_panel = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  Image fit, zoomed, panned, back;
+  app->frame(nullptr, &fit);
+  Injection in;
+  in.x = 500;
+  in.y = 400;
+  in.wheel = 3.0f;
+  app->frame(&in, &zoomed);
+  EXPECT_GT(differing_pixels(fit, zoomed), 20000);
+  Injection drag;
+  drag.x = 500;
+  drag.y = 400;
+  drag.down[1] = true;  // right-drag pans
+  app->frame(&drag);
+  drag.x += 80;
+  app->frame(&drag);
+  drag.down[1] = false;
+  app->frame(&drag, &panned);
+  EXPECT_GT(differing_pixels(zoomed, panned), 2000);  // the square moved (the hatching is fixed to the screen)
+  Injection f;
+  f.keys = {GLFW_KEY_F};
+  app->frame(&f);
+  app->frame(nullptr, &back);
+  EXPECT_TRUE(test::compare_images(rgb(back), rgb(fit)).matches());
+}
+
+}  // namespace
+}  // namespace invfree::live
