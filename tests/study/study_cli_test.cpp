@@ -1,0 +1,155 @@
+// End to end, kept short for CI: `invfree study --quick` and `invfree stability --quick`
+// write their files with the documented columns, the lecture's method is ok on every
+// stress scene it can start, implicit Euler shows first order where the motion is smooth,
+// and bad input exits 2 / an unwritable output 4.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <algorithm>
+#include <cstdlib>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/study/error.h"
+
+namespace invfree {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CliRun run(const std::string& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd = std::string(INVFREE_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("invfree_study_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(p);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+bool is_png(const fs::path& p) { return slurp(p).rfind("\x89PNG\r\n\x1a\n", 0) == 0; }
+
+TEST(StudyCommand, QuickStudyWritesTheTableAndTheCharts) {
+  const fs::path dir = fresh_dir("study");
+  const CliRun r = run("study --quick --quiet --out " + dir.string(), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("study of compress"), std::string::npos) << r.out;
+  EXPECT_TRUE(is_png(dir / "study.png"));
+  EXPECT_TRUE(is_png(dir / "study-sweeps.png"));
+  const auto rows = read_csv(dir / "study.csv");
+  ASSERT_GT(rows.size(), 40u);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"method", "h", "tol", "n_seg", "wall_s", "error", "newton_iters",
+                                               "failure"}));
+  std::map<std::string, int> per_method;
+  std::vector<double> smooth_h, smooth_err;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 8u) << i;
+    ++per_method[rows[i][0]];
+    const std::string& failure = rows[i][7];
+    if (failure == "ok") {
+      EXPECT_GT(std::stod(rows[i][5]), 0.0) << "row " << i;
+      EXPECT_GT(std::stod(rows[i][4]), 0.0) << "row " << i;
+    } else {
+      EXPECT_TRUE(rows[i][5].empty()) << "a failed run has no error";
+    }
+    if (rows[i][0] == "lecture-no-contact" && failure == "ok") {
+      smooth_h.push_back(std::stod(rows[i][1]));
+      smooth_err.push_back(std::stod(rows[i][5]));
+    }
+  }
+  for (const char* m : {"lecture", "full-eigen-clamp", "no-projection", "no-inversion-filter", "symplectic-euler",
+                        "linear", "arap", "stable-neo-hookean", "lecture-mesh", "lecture-no-contact"})
+    EXPECT_GE(per_method[m], 2) << m;
+  // The classic check: implicit Euler is first order on the smooth, contact-free motion.
+  ASSERT_GE(smooth_h.size(), 4u);
+  EXPECT_NEAR(loglog_slope(smooth_h, smooth_err), 1.0, 0.1);
+  fs::remove_all(dir);
+}
+
+TEST(StabilityCommand, QuickSweepClassifiesEveryCell) {
+  const fs::path dir = fresh_dir("stability");
+  const CliRun r = run("stability --quick --quiet --out " + dir.string(), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(is_png(dir / "stability.png"));
+  const std::string md = slurp(dir / "stability.md");
+  EXPECT_NE(md.find("| method |"), std::string::npos);
+  const auto rows = read_csv(dir / "stability.csv");
+  ASSERT_EQ(rows[0], (std::vector<std::string>{"method", "scene", "verdict", "fail_step", "wall_s"}));
+  const std::vector<std::string> verdicts = {"ok", "inverted", "penetrated", "non-finite",
+                                             "newton-failed", "blew-up", "n/a"};
+  int lecture_cells = 0, failures = 0;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 5u) << i;
+    const std::string &method = rows[i][0], &scene = rows[i][1], &verdict = rows[i][2];
+    EXPECT_NE(std::find(verdicts.begin(), verdicts.end(), verdict), verdicts.end()) << verdict;
+    EXPECT_EQ(verdict == "ok", rows[i][3].empty()) << "a fail_step exactly when not ok";
+    if (method == "lecture") {
+      ++lecture_cells;
+      EXPECT_EQ(verdict, scene == "stress-jitter-inverted" ? "n/a" : "ok") << scene;
+    }
+    failures += verdict != "ok" && verdict != "n/a";
+  }
+  EXPECT_EQ(lecture_cells, 11);
+  EXPECT_EQ(rows.size(), 1u + 8u * 11u);
+  EXPECT_GT(failures, 0) << "the stress scenes must break some method";
+  fs::remove_all(dir);
+}
+
+TEST(StudyCommand, BadInputAndUnwritableOutput) {
+  const fs::path dir = fresh_dir("bad");
+  CliRun r = run("study --scene no-such-scene --out " + dir.string(), dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  r = run("study --set material.nu=0.7 --out " + dir.string(), dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  const fs::path file = dir / "a-file";
+  std::ofstream(file) << "x";
+  r = run("study --quick --out " + file.string(), dir);
+  EXPECT_EQ(r.code, 4) << r.err;
+  r = run("stability --quick --out " + (file / "sub").string(), dir);
+  EXPECT_EQ(r.code, 4) << r.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace invfree
