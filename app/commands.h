@@ -7,6 +7,7 @@
 namespace invfree {
 
 void register_simulate_command(CLI::App& app, int& exit_code);
+void register_bench_command(CLI::App& app, int& exit_code);
 void register_render_command(CLI::App& app, int& exit_code);
 void register_study_command(CLI::App& app, int& exit_code);
 void register_stability_command(CLI::App& app, int& exit_code);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "show help for every command");
   int exit_code = invfree::exit_code::kOk;
   invfree::register_simulate_command(app, exit_code);
+  invfree::register_bench_command(app, exit_code);
   invfree::register_render_command(app, exit_code);
   invfree::register_study_command(app, exit_code);
   invfree::register_stability_command(app, exit_code);

@@ -40,49 +40,53 @@ ThreadPool::ThreadPool(int threads) {
 }
 
 ThreadPool::~ThreadPool() {
-  stop_ = true;
-  generation_.fetch_add(1, std::memory_order_release);
-  generation_.notify_all();
+  stop_.store(true, std::memory_order_release);
+  wake_.fetch_add(1, std::memory_order_release);
+  wake_.notify_all();
   for (auto& w : workers_) w.join();
 }
 
 void ThreadPool::work() {
-  for (int t = next_task_.fetch_add(1, std::memory_order_relaxed); t < tasks_;
-       t = next_task_.fetch_add(1, std::memory_order_relaxed))
-    call_(ctx_, t);
+  std::uint64_t s = state_.load(std::memory_order_acquire);
+  while (true) {
+    const std::uint32_t tasks = static_cast<std::uint32_t>(s >> 16) & 0xffff;
+    const std::uint32_t next = static_cast<std::uint32_t>(s) & 0xffff;
+    if (next >= tasks) return;
+    if (!state_.compare_exchange_weak(s, s + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
+    // The run cannot end while this claimed task is pending, so call_/ctx_ are its own.
+    call_(ctx_, static_cast<int>(next));
+    if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == static_cast<int>(tasks)) done_.notify_one();
+    s = state_.load(std::memory_order_acquire);
+  }
 }
 
 void ThreadPool::worker_loop() {
-  // Generation 0 is the pool's construction: a worker that starts late must still take
-  // part in every run after it, so it never reads its starting point from the counter.
   std::uint32_t seen = 0;
   while (true) {
-    for (int i = 0; i < kSpinIterations && generation_.load(std::memory_order_acquire) == seen; ++i)
-      cpu_relax();
-    generation_.wait(seen, std::memory_order_acquire);
-    seen = generation_.load(std::memory_order_acquire);
-    if (stop_) return;
+    for (int i = 0; i < kSpinIterations && wake_.load(std::memory_order_acquire) == seen; ++i) cpu_relax();
+    wake_.wait(seen, std::memory_order_acquire);
+    seen = wake_.load(std::memory_order_acquire);
+    if (stop_.load(std::memory_order_acquire)) return;
     work();
-    if (busy_workers_.fetch_sub(1, std::memory_order_acq_rel) == 1) busy_workers_.notify_one();
   }
 }
 
 void ThreadPool::run_impl(int tasks, TaskFn call, void* ctx) {
-  tasks_ = tasks;
   call_ = call;
   ctx_ = ctx;
-  next_task_.store(0, std::memory_order_relaxed);
-  busy_workers_.store(static_cast<int>(workers_.size()), std::memory_order_relaxed);
-  generation_.fetch_add(1, std::memory_order_release);
-  generation_.notify_all();
+  done_.store(0, std::memory_order_relaxed);
+  const std::uint64_t run = (state_.load(std::memory_order_relaxed) >> 32) + 1;
+  state_.store((run << 32) | (static_cast<std::uint64_t>(tasks) << 16), std::memory_order_release);
+  wake_.fetch_add(1, std::memory_order_release);
+  wake_.notify_all();
   work();
+  // Wait for the tasks other threads claimed (never for a worker that did not start).
   for (int i = 0; i < kSpinIterations; ++i) {
-    if (busy_workers_.load(std::memory_order_acquire) == 0) return;
+    if (done_.load(std::memory_order_acquire) == tasks) return;
     cpu_relax();
   }
-  for (int busy = busy_workers_.load(std::memory_order_acquire); busy != 0;
-       busy = busy_workers_.load(std::memory_order_acquire))
-    busy_workers_.wait(busy, std::memory_order_acquire);
+  for (int d = done_.load(std::memory_order_acquire); d != tasks; d = done_.load(std::memory_order_acquire))
+    done_.wait(d, std::memory_order_acquire);
 }
 
 ThreadPool& thread_pool() {

@@ -29,11 +29,12 @@ class ThreadPool {
 
   int size() const { return static_cast<int>(workers_.size()) + 1; }
 
-  // Calls fn(task) for every task in [0, tasks). Not re-entrant: tasks must not call run.
+  // Calls fn(task) for every task in [0, tasks) (at most 65535 per run, else they run
+  // inline). Not re-entrant: tasks must not call run.
   template <class Fn>
   void run(int tasks, Fn&& fn) {
     if (tasks <= 0) return;
-    if (tasks == 1 || workers_.empty()) {
+    if (tasks == 1 || workers_.empty() || tasks > 0xffff) {
       for (int t = 0; t < tasks; ++t) fn(t);
       return;
     }
@@ -45,16 +46,20 @@ class ThreadPool {
   using TaskFn = void (*)(void*, int);
   void run_impl(int tasks, TaskFn call, void* ctx);
   void worker_loop();
+  // Claims and runs tasks of the current run until none is left.
   void work();
 
+  // state_ packs the run's number (high 32 bits), its task count (next 16) and the next
+  // unclaimed task (low 16): a task is claimed by a compare-and-swap that fails once the
+  // run is over, so a worker that wakes late never touches a finished run and the caller
+  // never waits for a worker that has not started: it waits only for claimed tasks.
   std::vector<std::thread> workers_;
-  std::atomic<std::uint32_t> generation_{0};
-  std::atomic<int> next_task_{0};
-  std::atomic<int> busy_workers_{0};
-  int tasks_ = 0;
+  std::atomic<std::uint64_t> state_{0};
+  std::atomic<std::uint32_t> wake_{0};  // futex word the idle workers sleep on
+  std::atomic<int> done_{0};            // tasks finished in the current run
   TaskFn call_ = nullptr;
   void* ctx_ = nullptr;
-  bool stop_ = false;
+  std::atomic<bool> stop_{false};
 };
 
 // Fixed split of n items into blocks of at least `min_block` and at most `max_blocks`

@@ -87,7 +87,10 @@ struct TriangleElasticity {
           H(col, row) = v;
         }
       }
-    if (projection == HessianProjection::Full) H = project_psd<6>(H);
+    if (projection == HessianProjection::Full) {
+      H = project_psd<6>(H);
+      H = (0.5 * (H + H.transpose())).eval();  // the eigen-reconstruction is symmetric only to rounding
+    }
   }
 };
 

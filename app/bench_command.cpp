@@ -1,0 +1,321 @@
+// `invfree bench`: the scaling curve. Runs a scene at each mesh size and writes
+//   DIR/bench.csv  one row per size: n_seg, nodes, triangles, unknowns, steps, mean and
+//                  median ms per step, Newton iterations per step, and where the time went
+//                  (assembly, factorisation, solve, line search, other; mean ms per step),
+//                  PCG iterations and factorisations per step, the linear solver used
+//   DIR/bench.png  log-log chart of ms per step against degrees of freedom, with the
+//                  least-squares slope (fitted over n_seg >= 32 when two such sizes ran)
+// and a table on stdout. `--fps F` then finds, by bisection on n_seg, the largest mesh
+// whose median step still fits in a frame of 1/F s (one step per frame: the live mode's
+// n_seg slider). Times come from the step report's steady-clock split (core/simulation.h).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/interrupt.h"
+#include "app/output_files.h"
+#include "app/plot/chart.h"
+#include "app/scene_options.h"
+#include "core/parallel.h"
+#include "core/simulation.h"
+
+namespace invfree {
+
+namespace {
+
+struct BenchOptions {
+  SceneOptions scene;
+  std::string sizes = "4,8,16,32,64,128,256";
+  int steps = 300;
+  std::string out_dir = "bench";
+  int threads = 0;
+  double fps = 0.0;
+};
+
+struct BenchRow {
+  int n_seg = 0, nodes = 0, triangles = 0, dofs = 0, steps = 0;
+  double mean_ms = 0, median_ms = 0, newton = 0;
+  double assembly = 0, factor = 0, solve = 0, line_search = 0, other = 0;
+  double pcg = 0, factorizations = 0;
+  std::string solver;
+};
+
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "invfree: %s\n", message.c_str());
+  return code;
+}
+
+// "4,8,16" -> {4, 8, 16}; "" on success, else the reason.
+std::string parse_sizes(const std::string& text, std::vector<int>& sizes) {
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    long v = 0;
+    try {
+      v = std::stol(item, &used);
+    } catch (...) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || v < 1 || v > kMaxSegments)
+      return "--sizes: \"" + item + "\" is not an n_seg between 1 and " + std::to_string(kMaxSegments);
+    sizes.push_back(static_cast<int>(v));
+  }
+  if (sizes.empty()) return "--sizes: expected a comma-separated list of n_seg, e.g. 4,8,16";
+  return "";
+}
+
+// Runs `steps` steps of `scene` at n_seg; false (and *error) when a step fails or on Ctrl-C.
+bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::string* error, int* code) {
+  SceneDef scene = base;
+  scene.n_seg = n_seg;
+  if (auto e = validate_scene(scene); !e.empty()) {
+    *error = "n_seg " + std::to_string(n_seg) + ": " + e;
+    *code = exit_code::kBadInput;
+    return false;
+  }
+  Simulation sim = make_simulation(scene);
+  row = BenchRow{};
+  row.n_seg = n_seg;
+  row.nodes = sim.mesh.node_count();
+  row.triangles = sim.mesh.triangle_count();
+  row.dofs = 2 * row.nodes + (scene.has_ceiling ? 1 : 0);
+  row.solver = scene.integrator == Integrator::ImplicitEuler ? sim.workspace.solver.backend_name() : "explicit";
+  std::vector<double> ms;
+  ms.reserve(steps);
+  long newton = 0, pcg = 0, factorizations = 0;
+  for (int k = 0; k < steps; ++k) {
+    if (interrupted()) {
+      *error = "interrupted at n_seg " + std::to_string(n_seg);
+      *code = exit_code::kInterrupted;
+      return false;
+    }
+    const StepReport r = step(sim);
+    if (r.status != StepStatus::Ok) {
+      *error = "n_seg " + std::to_string(n_seg) + ": step " + std::to_string(k + 1) +
+               " failed: " + step_status_name(r.status) + ": " + r.message;
+      *code = exit_code::kRunFailed;
+      return false;
+    }
+    ms.push_back(r.wall_ms);
+    newton += r.newton_iterations;
+    pcg += r.pcg_iterations;
+    factorizations += r.factorizations;
+    row.assembly += r.assembly_ms;
+    row.factor += r.factor_ms;
+    row.solve += r.solve_ms;
+    row.line_search += r.line_search_ms;
+  }
+  row.steps = steps;
+  if (steps > 0) {
+    double total = 0.0;
+    for (double m : ms) total += m;
+    std::vector<double> sorted = ms;
+    std::nth_element(sorted.begin(), sorted.begin() + steps / 2, sorted.end());
+    double median = sorted[steps / 2];
+    if (steps % 2 == 0) median = 0.5 * (median + *std::max_element(sorted.begin(), sorted.begin() + steps / 2));
+    const double inv = 1.0 / steps;
+    row.mean_ms = total * inv;
+    row.median_ms = median;
+    row.newton = newton * inv;
+    row.pcg = pcg * inv;
+    row.factorizations = factorizations * inv;
+    row.assembly *= inv;
+    row.factor *= inv;
+    row.solve *= inv;
+    row.line_search *= inv;
+    row.other = std::max(0.0, row.mean_ms - row.assembly - row.factor - row.solve - row.line_search);
+  }
+  return true;
+}
+
+std::string fmt(double v, int precision = 4) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*g", precision, v);
+  return b;
+}
+
+std::string csv_text(const std::vector<BenchRow>& rows) {
+  std::ostringstream o;
+  o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,assembly_ms,"
+       "factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,factorizations_per_step,solver\n";
+  for (const auto& r : rows)
+    o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
+      << fmt(r.mean_ms, 6) << "," << fmt(r.median_ms, 6) << "," << fmt(r.newton, 5) << ","
+      << fmt(r.assembly, 6) << "," << fmt(r.factor, 6) << "," << fmt(r.solve, 6) << ","
+      << fmt(r.line_search, 6) << "," << fmt(r.other, 6) << "," << fmt(r.pcg, 5) << ","
+      << fmt(r.factorizations, 5) << "," << r.solver << "\n";
+  return o.str();
+}
+
+// Least-squares slope of log(ms) against log(dofs) over the rows with n_seg >= 32 (the
+// range the scaling target speaks of), or over every row when fewer than two qualify.
+// Returns false when fewer than two usable rows exist.
+bool fit_slope(const std::vector<BenchRow>& rows, double* slope, double* intercept, int* from_n) {
+  auto fit = [&](int min_n) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int k = 0;
+    for (const auto& r : rows) {
+      if (r.n_seg < min_n || !(r.median_ms > 0.0)) continue;
+      const double x = std::log(r.dofs), y = std::log(r.median_ms);
+      sx += x, sy += y, sxx += x * x, sxy += x * y;
+      ++k;
+    }
+    const double den = k * sxx - sx * sx;
+    if (k < 2 || den <= 0.0) return false;
+    *slope = (k * sxy - sx * sy) / den;
+    *intercept = (sy - *slope * sx) / k;
+    *from_n = min_n;
+    return true;
+  };
+  return fit(32) || fit(1);
+}
+
+Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name) {
+  ChartSpec spec;
+  spec.title = "invfree bench: " + scene_name + ", time per step against unknowns";
+  spec.x_label = "degrees of freedom (2 x nodes + ceiling)";
+  spec.y_label = "ms per step";
+  spec.log_x = spec.log_y = true;
+  Series total{"median ms per step", {}, {}, Rgb{0.05f, 0.25f, 0.65f}};
+  Series assembly{"assembly (mean)", {}, {}, Rgb{0.85f, 0.45f, 0.05f}};
+  Series linear{"factorisation + solve (mean)", {}, {}, Rgb{0.15f, 0.6f, 0.25f}};
+  Series search{"line search (mean)", {}, {}, Rgb{0.6f, 0.2f, 0.6f}};
+  for (const auto& r : rows) {
+    total.x.push_back(r.dofs), total.y.push_back(r.median_ms);
+    assembly.x.push_back(r.dofs), assembly.y.push_back(r.assembly);
+    linear.x.push_back(r.dofs), linear.y.push_back(r.factor + r.solve);
+    search.x.push_back(r.dofs), search.y.push_back(r.line_search);
+  }
+  for (Series* s : {&assembly, &linear, &search}) s->lines = true;
+  double slope = 0, intercept = 0;
+  int from_n = 0;
+  if (fit_slope(rows, &slope, &intercept, &from_n)) {
+    Series fitted{"fit: ms ~ DOF^" + fmt(slope, 3), {}, {}, Rgb{0.8f, 0.1f, 0.1f}};
+    fitted.markers = false;
+    for (const auto& r : rows)
+      if (r.n_seg >= from_n) {
+        fitted.x.push_back(r.dofs);
+        fitted.y.push_back(std::exp(intercept + slope * std::log(r.dofs)));
+      }
+    spec.series.push_back(fitted);
+    spec.notes.push_back("fitted slope " + fmt(slope, 3) + " over n_seg >= " + std::to_string(from_n));
+  }
+  spec.series.push_back(total);
+  spec.series.push_back(assembly);
+  spec.series.push_back(linear);
+  spec.series.push_back(search);
+  if (!rows.empty()) {
+    spec.notes.push_back("solver: " + rows.back().solver + ", " + std::to_string(thread_count()) + " threads, " +
+                         std::to_string(rows.back().steps) + " steps per size");
+  }
+  return render_chart(spec);
+}
+
+// The largest n_seg in (lo, hi) whose median step fits in `budget_ms`, knowing lo fits
+// and hi does not; shorter runs (a third of the steps, at least 60) keep it quick.
+int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_ms, std::string* error, int* code) {
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    BenchRow row;
+    if (!run_size(scene, mid, steps, row, error, code)) return -1;
+    std::printf("  n_seg %4d: median %.3f ms/step\n", mid, row.median_ms);
+    std::fflush(stdout);
+    (row.median_ms <= budget_ms ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+int run_bench(const BenchOptions& opt) {
+  std::string error;
+  auto scene = opt.scene.resolve(&error);
+  if (!scene) return fail(exit_code::kBadInput, error);
+  std::vector<int> sizes;
+  if (auto e = parse_sizes(opt.sizes, sizes); !e.empty()) return fail(exit_code::kBadInput, e);
+  for (int n : sizes) {
+    SceneDef s = *scene;
+    s.n_seg = n;
+    if (auto e = validate_scene(s); !e.empty()) return fail(exit_code::kBadInput, "n_seg " + std::to_string(n) + ": " + e);
+  }
+  if (auto e = prepare_output_directory(opt.out_dir, false, false); !e.empty())
+    return fail(exit_code::kOutputFailed, e);
+  if (opt.threads > 0) set_thread_count(opt.threads);
+  install_interrupt_handler();
+
+  std::printf("%-6s %8s %10s %6s %10s %10s %7s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs", "triangles", "steps",
+              "median_ms", "mean_ms", "newton", "assembly", "factor", "solve", "search", "pcg", "solver");
+  std::vector<BenchRow> rows;
+  int code = exit_code::kOk;
+  for (int n : sizes) {
+    BenchRow row;
+    if (!run_size(*scene, n, opt.steps, row, &error, &code)) break;
+    rows.push_back(row);
+    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %9.4f %9.4f %9.4f %9.4f %6.2f  %s\n", row.n_seg, row.dofs,
+                row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton, row.assembly, row.factor,
+                row.solve, row.line_search, row.pcg, row.solver.c_str());
+    std::fflush(stdout);
+  }
+  // Whatever completed is written, also after a failure or Ctrl-C.
+  if (!rows.empty()) {
+    if (auto e = write_file_atomically(opt.out_dir + "/bench.csv", csv_text(rows)); !e.empty())
+      return fail(exit_code::kOutputFailed, e);
+    if (auto e = write_png(opt.out_dir + "/bench.png", chart(rows, scene->name)); !e.empty())
+      return fail(exit_code::kOutputFailed, e);
+    double slope = 0, intercept = 0;
+    int from_n = 0;
+    if (fit_slope(rows, &slope, &intercept, &from_n))
+      std::printf("fitted slope: ms per step ~ DOF^%.3f over n_seg >= %d\n", slope, from_n);
+    std::printf("wrote %s/bench.csv and %s/bench.png\n", opt.out_dir.c_str(), opt.out_dir.c_str());
+  }
+  if (code != exit_code::kOk) return fail(code, error);
+
+  if (opt.fps > 0.0) {
+    const double budget = 1000.0 / opt.fps;
+    int lo = 0, hi = 0;
+    for (const auto& r : rows) {
+      if (r.median_ms <= budget) lo = std::max(lo, r.n_seg);
+      else if (hi == 0 || r.n_seg < hi) hi = r.n_seg;
+    }
+    if (lo == 0) {
+      std::printf("no size ran within %.1f ms per step (%.0f fps)\n", budget, opt.fps);
+    } else if (hi == 0 || hi <= lo) {
+      std::printf("largest n_seg at %.0f fps: at least %d (every size ran within %.1f ms per step)\n", opt.fps,
+                  lo, budget);
+    } else {
+      std::printf("bisecting n_seg in (%d, %d) for %.1f ms per step (%.0f fps):\n", lo, hi, budget, opt.fps);
+      const int best = bisect_fps(*scene, lo, hi, std::max(60, opt.steps / 3), budget, &error, &code);
+      if (best < 0) return fail(code, error);
+      std::printf("largest n_seg at %.0f fps (median step within %.1f ms): %d\n", opt.fps, budget, best);
+    }
+  }
+  return exit_code::kOk;
+}
+
+}  // namespace
+
+void register_bench_command(CLI::App& app, int& exit_code) {
+  auto opt = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "time a scene at several mesh sizes; write bench.csv and a log-log chart bench.png");
+  opt->scene.add_to(cmd);
+  cmd->add_option("--sizes", opt->sizes, "comma-separated n_seg values")->capture_default_str();
+  cmd->add_option("--steps", opt->steps, "time steps per size (the whole run of the scene by default)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--out", opt->out_dir, "output directory for bench.csv and bench.png")
+      ->capture_default_str()
+      ->type_name("DIR");
+  cmd->add_option("--threads", opt->threads, "worker threads (default: every core)")->check(CLI::Range(1, 256));
+  cmd->add_option("--fps", opt->fps,
+                  "then find the largest n_seg whose median step fits in one frame at this rate")
+      ->check(CLI::Range(1.0, 10000.0));
+  cmd->callback([opt, &exit_code] { exit_code = run_bench(*opt); });
+}
+
+}  // namespace invfree
