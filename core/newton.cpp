@@ -88,7 +88,10 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
       break;
     }
     result.residual = ws.direction.lpNorm<Eigen::Infinity>() / problem.h;
-    if (result.residual < settings.tol) {
+    // Never accept the starting point without one step: where the whole step's motion is
+    // below tol * h (a square at rest, h g < tol: h < 1e-3 s at tol = 1e-2 m/s) it would
+    // be accepted unchanged every step and the square would never start to fall.
+    if (result.residual < settings.tol && result.iterations > 0) {
       // The ceiling counts as at its target once within tol * h of it (the demo's DBC
       // test). Without this, a ceiling that may not jump (a node too close) and sits
       // closer than tol * h gives a direction below tol after every doubling, so k
