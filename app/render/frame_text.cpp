@@ -19,13 +19,14 @@ std::string format_si(double value, const char* unit) {
     return buf;
   }
   const double a = std::fabs(value);
+  if (a == 0.0) return std::string("0 ") + unit;
   for (const auto& p : kPrefixes) {
     // Round to three significant digits first, so that 999.6 becomes "1.00 k", not "1000".
-    if (a == 0.0 || a >= p.factor * 0.9995 || p.factor == 1e-3) {
+    if (a >= p.factor * 0.9995 || p.factor == 1e-3) {
       const double v = value / p.factor;
       const double av = std::fabs(v);
       const int decimals = av >= 99.95 ? 0 : av >= 9.995 ? 1 : 2;
-      std::snprintf(buf, sizeof buf, "%.*f %s%s", a == 0.0 ? 0 : decimals, v, p.prefix, unit);
+      std::snprintf(buf, sizeof buf, "%.*f %s%s", decimals, v, p.prefix, unit);
       return buf;
     }
   }

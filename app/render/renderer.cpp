@@ -31,6 +31,7 @@ constexpr Rgba kPlaneHatch{0.60f, 0.60f, 0.60f, 1.0f};
 constexpr Rgba kPlaneEdge{0.22f, 0.22f, 0.22f, 1.0f};
 constexpr Rgba kMeshEdge{0.08f, 0.08f, 0.08f, 0.38f};
 constexpr Rgba kOutline{0.08f, 0.08f, 0.08f, 1.0f};
+constexpr Rgba kInvertedInk{0.0f, 0.50f, 0.10f, 1.0f};  // the inverted green, dark enough for text
 
 enum FontSize { kTitle = 0, kBody = 1, kSmall = 2 };
 
@@ -226,7 +227,7 @@ static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState&
   if (inverted > 0) {
     y += 1.3 * body;
     res.add_text("inverted: " + std::to_string(inverted) + (inverted == 1 ? " triangle" : " triangles"), kBody, x0, y,
-                 rgba(kInvertedColor));
+                 kInvertedInk);
   }
 
   // Colour bar: vertical, stretch up, with the det F <= 0 swatch below it.
@@ -463,14 +464,22 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   for (int i = 0; i < nodes; ++i) p[i] = cam.to_pixel(Vec2(state.x[2 * i], state.x[2 * i + 1]));
   double det_lo = 1.0, det_hi = 1.0;
   int inverted = 0;
+  // Inverted triangles last: they overlap their neighbours (they are folded over), and
+  // drawn first they would be hidden under them.
+  for (const bool inverted_pass : {false, true}) {
+    for (size_t t = 0; t < state.triangles.size(); ++t) {
+      const double d = t < state.det_f.size() ? state.det_f[t] : 1.0;
+      if (!(d > 0.0) != inverted_pass) continue;
+      const auto& tri = state.triangles[t];
+      add_triangle(world, p[tri[0]], p[tri[1]], p[tri[2]], rgba(det_f_color(d)));
+    }
+  }
   for (size_t t = 0; t < state.triangles.size(); ++t) {
     const double d = t < state.det_f.size() ? state.det_f[t] : 1.0;
     if (t == 0) det_lo = det_hi = d;
     det_lo = std::min(det_lo, d);
     det_hi = std::max(det_hi, d);
     if (!(d > 0.0)) ++inverted;
-    const auto& tri = state.triangles[t];
-    add_triangle(world, p[tri[0]], p[tri[1]], p[tri[2]], rgba(det_f_color(d)));
   }
   mesh_edges(state.triangles, &res.interior_edges, &res.boundary_edges);
   if (options.edges) {

@@ -1,0 +1,136 @@
+// `invfree render` end to end: frames on disk (frame 0 is the initial state, pixel for
+// pixel the golden), no partial files, refusal of a non-empty directory, bad input,
+// --mp4 with and without ffmpeg, a failing step. Runs with DISPLAY unset.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/render/image_compare.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int code;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `invfree ARGS` without a display (and with `env` first, if given).
+CommandResult run(const std::string& args, const std::string& env = "") {
+  static int counter = 0;
+  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const std::string out = ::testing::TempDir() + "/render_out_" + tag, err = ::testing::TempDir() + "/render_err_" + tag;
+  const std::string cmd = "env -u DISPLAY -u WAYLAND_DISPLAY " + env + " " + INVFREE_EXE + " " + args + " >" + out +
+                          " 2>" + err + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+std::string fresh_dir(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "/render_cli_" + name + "_" + std::to_string(::getpid());
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::vector<std::string> files_in(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(RenderCli, WritesFramesAndFrameZeroIsTheInitialState) {
+  const std::string dir = fresh_dir("frames");
+  const CommandResult r = run("render --scene compress --frames 3 --size 960x540 --out " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // no progress when stderr is not a terminal
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_NE(r.out.find("3 frames 960x540"), std::string::npos) << r.out;
+  // Exactly the frames: no temporary or partial file left behind.
+  EXPECT_EQ(files_in(dir), (std::vector<std::string>{"frame_000000.png", "frame_000001.png", "frame_000002.png"}));
+  invfree::test::RgbImage frame0;
+  ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000000.png", &frame0));
+  const std::string message =
+      invfree::test::check_golden(frame0, "compress_t0", INVFREE_GOLDEN_DIR, INVFREE_GOLDEN_FAILURE_DIR "/cli");
+  if (std::getenv("INVFREE_UPDATE_GOLDENS") == nullptr) {
+    EXPECT_EQ(message, "");
+  }
+  invfree::test::RgbImage frame2;
+  ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000002.png", &frame2));
+  EXPECT_NE(frame0.rgb, frame2.rgb);  // the square moved (and the time label changed)
+}
+
+TEST(RenderCli, RefusesANonEmptyDirectoryUnlessForced) {
+  const std::string dir = fresh_dir("force");
+  ASSERT_EQ(run("render --frames 1 --size 320x180 --out " + dir).code, 0);
+  const CommandResult again = run("render --frames 2 --size 320x180 --out " + dir);
+  EXPECT_EQ(again.code, 2);
+  EXPECT_EQ(std::count(again.err.begin(), again.err.end(), '\n'), 1) << again.err;
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+  EXPECT_EQ(files_in(dir).size(), 1u);  // untouched
+  const CommandResult forced = run("render --frames 2 --size 320x180 --force --out " + dir);
+  EXPECT_EQ(forced.code, 0) << forced.err;
+  EXPECT_EQ(files_in(dir).size(), 2u);
+}
+
+TEST(RenderCli, BadInputIsOneLineAndExitTwo) {
+  const std::string dir = fresh_dir("bad");
+  for (const std::string args : {"--size 12x12", "--size wide", "--size 1280x", "--frames 0", "--steps-per-frame 0",
+                                 "--scene nosuchscene", "--set material.nu=0.7", "--fps 0"}) {
+    const CommandResult r = run("render --out " + dir + " " + args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("invfree: ", 0), 0u) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir) && !fs::is_empty(dir));
+}
+
+TEST(RenderCli, Mp4WithoutFfmpegSaysSoBeforeRendering) {
+  const std::string dir = fresh_dir("noffmpeg");
+  const CommandResult r = run("render --frames 2 --size 320x180 --mp4 --out " + dir, "PATH=/nonexistent");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("ffmpeg"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/frame_000000.png"));
+}
+
+TEST(RenderCli, Mp4WithFfmpegHasEvenDimensions) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "ffmpeg is not installed";
+  const std::string dir = fresh_dir("mp4");
+  const CommandResult r = run("render --frames 4 --size 321x181 --mp4 --fps 25 --out " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir + "/movie.mp4"));
+  const std::string probe = dir + "/probe.txt";
+  ASSERT_EQ(std::system(("ffprobe -v error -select_streams v:0 -show_entries stream=width,height,pix_fmt,nb_frames "
+                         "-of default=noprint_wrappers=1 " + dir + "/movie.mp4 >" + probe).c_str()), 0);
+  const std::string info = slurp(probe);
+  EXPECT_NE(info.find("width=322"), std::string::npos) << info;
+  EXPECT_NE(info.find("height=182"), std::string::npos) << info;
+  EXPECT_NE(info.find("pix_fmt=yuv420p"), std::string::npos) << info;
+  EXPECT_NE(info.find("nb_frames=4"), std::string::npos) << info;
+}
+
+TEST(RenderCli, FailedStepKeepsTheFramesBeforeItAndExitsThree) {
+  const std::string dir = fresh_dir("fail");
+  const CommandResult r = run("render --frames 5 --size 320x180 --set time.max_newton=1 --set time.tol=1e-14 --out " + dir);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("step 1 failed"), std::string::npos) << r.err;
+  EXPECT_EQ(files_in(dir), std::vector<std::string>{"frame_000000.png"});
+}
+
+}  // namespace

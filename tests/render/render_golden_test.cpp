@@ -1,0 +1,148 @@
+// Screenshot regression tests: deterministic frames of the built-in scenes rendered
+// offscreen (OSMesa, no display) at a fixed size and fixed steps, compared with the PNG
+// goldens in tests/render/goldens/ under the tolerance of image_compare.h. Each case also
+// checks that the state it pictures is what its name claims (first contact, maximum
+// compression, at rest, inverted triangles), so a golden cannot silently drift into
+// showing something else. Regenerate: tests/render/regenerate_goldens.sh.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/render/offscreen_context.h"
+#include "app/render/renderer.h"
+#include "core/scene.h"
+#include "core/scene_file.h"
+#include "core/simulation.h"
+#include "tests/render/image_compare.h"
+
+namespace invfree {
+namespace {
+
+constexpr int kWidth = 960, kHeight = 540;
+
+// One offscreen context and renderer for the whole test program.
+render::Renderer& renderer() {
+  static std::unique_ptr<render::OffscreenContext> context;
+  static std::unique_ptr<render::Renderer> r;
+  if (!r) {
+    std::string error;
+    context = render::OffscreenContext::create(&error);
+    if (!context) ADD_FAILURE() << error;
+    r = render::Renderer::create(context->get_proc_address(), kWidth, kHeight, &error);
+    if (!r) ADD_FAILURE() << error;
+  }
+  return *r;
+}
+
+test::RgbImage render_state(const Simulation& sim) {
+  render::Renderer& r = renderer();
+  r.draw(render::capture_frame_state(sim));
+  std::vector<std::uint8_t> rgba;
+  r.read_pixels(&rgba);
+  return test::from_gl_pixels(rgba, r.width(), r.height());
+}
+
+void expect_golden(const Simulation& sim, const std::string& name) {
+  const std::string message =
+      test::check_golden(render_state(sim), name, INVFREE_GOLDEN_DIR, INVFREE_GOLDEN_FAILURE_DIR);
+  EXPECT_TRUE(message.empty()) << message;
+}
+
+SceneDef scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  SceneDef s = *find_builtin_scene(name);
+  for (const auto& o : overrides) {
+    const std::string e = apply_override(s, o);
+    EXPECT_TRUE(e.empty()) << e;
+  }
+  return s;
+}
+
+void run_to(Simulation& sim, long step_count) {
+  while (sim.step_count < step_count) ASSERT_EQ(step(sim).status, StepStatus::Ok) << "step " << sim.step_count + 1;
+}
+
+double ground_gap(const Simulation& sim) {
+  double gap = INFINITY;
+  for (int i = 0; i < sim.mesh.node_count(); ++i) gap = std::min(gap, sim.x[2 * i + 1] - sim.scene.ground_y);
+  return gap;
+}
+
+double min_det_f(const Simulation& sim) {
+  const auto d = triangle_det_f(sim);
+  return *std::min_element(d.begin(), d.end());
+}
+
+TEST(RenderGolden, CompressInitialState) {
+  Simulation sim = make_simulation(scene("compress"));
+  expect_golden(sim, "compress_t0");
+}
+
+TEST(RenderGolden, CompressFirstGroundContact) {
+  // Step 32 is the first whose state has a node within the barrier's reach (d < dhat) of
+  // the ground.
+  constexpr long kContactStep = 32;
+  Simulation sim = make_simulation(scene("compress"));
+  run_to(sim, kContactStep - 1);
+  EXPECT_GE(ground_gap(sim), sim.scene.dhat);
+  run_to(sim, kContactStep);
+  EXPECT_LT(ground_gap(sim), sim.scene.dhat);
+  expect_golden(sim, "compress_first_contact");
+}
+
+TEST(RenderGolden, CompressMaximumCompression) {
+  // The ceiling stops at step 260; det F keeps settling for a few dozen steps. Step 280:
+  // ceiling at its stop and min det F within 0.5% of the smallest of the whole run.
+  constexpr long kStep = 280;
+  Simulation sim = make_simulation(scene("compress"));
+  double smallest = 1.0, at_step = 0.0;
+  while (sim.step_count < 300) {
+    run_to(sim, sim.step_count + 1);
+    smallest = std::min(smallest, min_det_f(sim));
+    if (sim.step_count == kStep) {
+      at_step = min_det_f(sim);
+      EXPECT_LE(sim.ceiling_y, sim.scene.ceiling_stop + 1e-3);
+      expect_golden(sim, "compress_max_compression");
+    }
+  }
+  EXPECT_LE(at_step, smallest * 1.005);
+}
+
+TEST(RenderGolden, DropAtRest) {
+  constexpr long kStep = 400;
+  Simulation sim = make_simulation(scene("drop"));
+  run_to(sim, kStep);
+  EXPECT_LT(sim.v.lpNorm<Eigen::Infinity>(), 1e-2);  // at rest on the ground
+  EXPECT_LT(ground_gap(sim), sim.scene.dhat);
+  expect_golden(sim, "drop_rest");
+}
+
+TEST(RenderGolden, LinearElasticityInverted) {
+  // Linear elasticity allows det F <= 0: a soft square (E = 1e4) thrown onto the ground
+  // at 8 m/s turns triangles near the ground inside out; they are drawn in the inverted
+  // colour, on top of their neighbours.
+  constexpr long kStep = 23;
+  Simulation sim = make_simulation(
+      scene("compress", {"material.model=linear", "material.E=1e4", "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
+  run_to(sim, kStep);
+  const auto det = triangle_det_f(sim);
+  EXPECT_GT(std::count_if(det.begin(), det.end(), [](double d) { return d <= 0.0; }), 0);
+  expect_golden(sim, "linear_inverted");
+}
+
+TEST(RenderGolden, SameStateSamePixels) {
+  // Nothing in the picture depends on the wall clock or on what was drawn before.
+  Simulation a = make_simulation(scene("compress"));
+  run_to(a, 40);
+  const test::RgbImage first = render_state(a);
+  Simulation other = make_simulation(scene("drop"));
+  render_state(other);
+  const test::RgbImage again = render_state(a);
+  EXPECT_EQ(first.rgb, again.rgb);
+}
+
+}  // namespace
+}  // namespace invfree

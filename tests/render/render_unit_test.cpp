@@ -1,0 +1,132 @@
+// The renderer's pieces that need no GL: the overlay's words and numbers, the colour
+// bar's ticks, the fixed camera, UTF-8 decoding, the frame writer's PNG encoding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "app/colormap.h"
+#include "app/render/camera.h"
+#include "app/render/frame_text.h"
+#include "app/render/frame_writer.h"
+#include "app/render/text_atlas.h"
+#include "core/scene.h"
+#include "tests/render/image_compare.h"
+
+namespace invfree::render {
+namespace {
+
+TEST(FrameText, SiPrefixesWithThreeSignificantDigits) {
+  const Lame l = lame_from_young_poisson(1e5, 0.4);  // the demo's: 35714 and 142857 Pa
+  EXPECT_EQ(format_si(l.mu, "Pa"), "35.7 kPa");
+  EXPECT_EQ(format_si(l.lambda, "Pa"), "143 kPa");
+  EXPECT_EQ(format_si(999.6, "Pa"), "1.00 kPa");
+  EXPECT_EQ(format_si(850.0, "Pa"), "850 Pa");
+  EXPECT_EQ(format_si(2.5e6, "Pa"), "2.50 MPa");
+  EXPECT_EQ(format_si(0.0, "Pa"), "0 Pa");
+}
+
+TEST(FrameText, TimeHasTheDecimalsOfTheStep) {
+  EXPECT_EQ(format_time(1.23, 0.01), "t = 1.23 s");
+  EXPECT_EQ(format_time(0.5, 0.001), "t = 0.500 s");
+  EXPECT_EQ(format_time(2.0, 0.1), "t = 2.00 s");
+}
+
+TEST(FrameText, ColorBarTicksArePowersOfTwoOnTheColormapScale) {
+  const auto ticks = color_bar_ticks(kDetFRange);
+  ASSERT_EQ(ticks.size(), 5u);  // 1/4 .. 4
+  const char* labels[] = {"0.25", "0.5", "1", "2", "4"};
+  for (size_t i = 0; i < ticks.size(); ++i) {
+    EXPECT_EQ(ticks[i].label, labels[i]);
+    EXPECT_DOUBLE_EQ(ticks[i].position, det_f_scale_position(ticks[i].value));
+  }
+  EXPECT_DOUBLE_EQ(ticks.front().position, -1.0);
+  EXPECT_DOUBLE_EQ(ticks[2].position, 0.0);
+  EXPECT_LE(color_bar_ticks(1024.0).size(), 11u);  // every other power when many
+}
+
+TEST(Camera, FixedPerSceneAndHoldsPlanesAndSquashedSquare) {
+  const SceneDef s = *find_builtin_scene("compress");
+  const WorldBox box = scene_world_box(s);
+  EXPECT_LT(box.y0, s.ground_y);
+  EXPECT_GT(box.y1, s.ceiling_y);
+  // Squashed to the ceiling's stop gap at constant area, the square is side^2/gap wide.
+  const double squashed = s.side * s.side / (s.ceiling_stop - s.ground_y);
+  EXPECT_GE(box.x1 - box.x0, squashed);
+  // Depends on the definition only: the same box whatever the state.
+  SceneDef moved = s;
+  EXPECT_EQ(scene_world_box(moved).x0, box.x0);
+  const FrameLayout l = frame_layout(1280, 720);
+  const Camera c = scene_camera(s, l);
+  for (const Vec2& corner : {Vec2(box.x0, box.y0), Vec2(box.x1, box.y1)}) {
+    const Vec2 p = c.to_pixel(corner);
+    EXPECT_GE(p.x(), l.plot.x - 1e-9);
+    EXPECT_LE(p.x(), l.plot.x + l.plot.w + 1e-9);
+    EXPECT_GE(p.y(), l.plot.y - 1e-9);
+    EXPECT_LE(p.y(), l.plot.y + l.plot.h + 1e-9);
+    EXPECT_LT((c.to_world(p) - corner).norm(), 1e-12);
+  }
+  EXPECT_NEAR(c.to_pixel(Vec2(0, 0)).x(), l.plot.x + 0.5 * l.plot.w, 1e-9);  // centred
+}
+
+TEST(Camera, PanelOnTheRightOrNone) {
+  const FrameLayout with = frame_layout(1280, 720), without = frame_layout(1280, 720, false);
+  EXPECT_DOUBLE_EQ(with.plot.w + with.panel.w, 1280.0);
+  EXPECT_GT(with.panel.w, 0.0);
+  EXPECT_DOUBLE_EQ(without.plot.w, 1280.0);
+  EXPECT_DOUBLE_EQ(with.scale, 1.0);
+  EXPECT_DOUBLE_EQ(frame_layout(640, 360).scale, 0.5);
+}
+
+TEST(TextAtlas, DecodesUtf8AndReplacesBrokenBytes) {
+  EXPECT_EQ(decode_utf8("μ = λ ≤ 1"), U"μ = λ ≤ 1");
+  EXPECT_EQ(decode_utf8("a\xff" "b"), U"a?b");
+  EXPECT_EQ(decode_utf8("\xce"), U"?");  // truncated sequence
+}
+
+TEST(TextAtlas, WiderTextAndKnownGlyphs) {
+  TextAtlas atlas;
+  atlas.build({20.0});
+  EXPECT_GT(atlas.text_width("det F = 0.425", 0), atlas.text_width("det F", 0));
+  std::vector<GlyphQuad> quads;
+  atlas.layout("μλ≤▶", 0, 10.0, 30.0, &quads);
+  ASSERT_EQ(quads.size(), 4u);
+  for (const GlyphQuad& q : quads) {  // whole pixels, inside the atlas
+    EXPECT_EQ(q.x0, std::round(q.x0));
+    EXPECT_EQ(q.y0, std::round(q.y0));
+    EXPECT_LE(q.u1, atlas.width());
+    EXPECT_LE(q.v1, atlas.height());
+  }
+}
+
+TEST(FrameWriter, PngRoundTripFlipsToTopRowFirst) {
+  const int w = 3, h = 2;
+  std::vector<std::uint8_t> rgba(w * h * 4);
+  for (int i = 0; i < w * h * 4; ++i) rgba[i] = static_cast<std::uint8_t>(i * 7);
+  const std::string path = ::testing::TempDir() + "/roundtrip.png";
+  ASSERT_EQ(write_png_file(path, rgba.data(), w, h, 1), "");
+  test::RgbImage back;
+  ASSERT_TRUE(test::load_png(path, &back));
+  ASSERT_EQ(back.width, w);
+  ASSERT_EQ(back.height, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c)  // PNG row y is GL row h-1-y
+        EXPECT_EQ(back.rgb[(y * w + x) * 3 + c], rgba[((h - 1 - y) * w + x) * 4 + c]);
+}
+
+TEST(ImageCompare, ToleranceRule) {
+  test::RgbImage a{100, 100, std::vector<std::uint8_t>(100 * 100 * 3, 128)}, b = a;
+  EXPECT_TRUE(test::compare_images(a, b).matches());
+  for (int p = 0; p < 10; ++p) b.rgb[p * 3] = 128 + 40;  // 10 of 10000 pixels: 0.1%, allowed
+  EXPECT_TRUE(test::compare_images(a, b).matches());
+  b.rgb[10 * 3 + 1] = 128 - 6;  // an 11th differing by 6/255 in one channel: over
+  EXPECT_EQ(test::compare_images(a, b).differing, 11);
+  EXPECT_FALSE(test::compare_images(a, b).matches());
+  b.rgb[10 * 3 + 1] = 128 - 5;  // 5/255 is within the threshold
+  EXPECT_TRUE(test::compare_images(a, b).matches());
+  test::RgbImage small{10, 10, std::vector<std::uint8_t>(300, 128)};
+  EXPECT_FALSE(test::compare_images(a, small).matches());
+}
+
+}  // namespace
+}  // namespace invfree::render
