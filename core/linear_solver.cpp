@@ -25,36 +25,59 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// ---- CHOLMOD's memory: a size-keyed recycling pool -----------------------------------
+// ---- CHOLMOD's memory: a size-keyed recycling pool per factorisation -------------------
 // CHOLMOD allocates its numeric workspace on every factorisation and frees it on return.
 // The sizes depend on the symbolic analysis only, so after the first factorisation every
-// request is served from blocks freed by the previous one and a step makes no call to the
-// system allocator. Blocks carry a 16-byte header with their size. The hooks are set once,
-// before the first CHOLMOD call; nothing else in the program uses CHOLMOD.
-constexpr std::size_t kHeader = 16;
-constexpr int kPoolSlots = 512;
-struct FreeBlock {
-  std::size_t size;
-  char* raw;
+// request is served from blocks the previous one freed and CHOLMOD itself makes no call to
+// the system allocator. Each backend owns a pool; its CHOLMOD calls run with that pool as
+// the thread's current one (PoolScope). A block's 16-byte header records its size and
+// pool, so it always returns to the pool it came from (or to the system when it came from
+// there). The hooks are installed once, before the first CHOLMOD call; nothing else in
+// the program uses CHOLMOD.
+struct MemoryPool {
+  struct Block {
+    std::size_t size;
+    char* raw;
+  };
+  static constexpr std::size_t kCapacity = 1024;
+  std::mutex mutex;
+  std::vector<Block> cached;  // capacity reserved up front: caching never allocates
+  MemoryPool() { cached.reserve(kCapacity); }
+  MemoryPool(const MemoryPool&) = delete;
+  MemoryPool& operator=(const MemoryPool&) = delete;
+  ~MemoryPool() {
+    for (const Block& b : cached) std::free(b.raw);
+  }
 };
-std::mutex g_pool_mutex;
-FreeBlock g_free[kPoolSlots];
-int g_free_count = 0;
+
+constexpr std::size_t kHeader = 16;
+thread_local MemoryPool* t_pool = nullptr;
+
+struct PoolScope {
+  MemoryPool* previous;
+  explicit PoolScope(MemoryPool& pool) : previous(t_pool) { t_pool = &pool; }
+  ~PoolScope() { t_pool = previous; }
+  PoolScope(const PoolScope&) = delete;
+  PoolScope& operator=(const PoolScope&) = delete;
+};
 
 void* pool_malloc(std::size_t size) {
   if (size == 0) size = 1;
-  {
-    std::lock_guard<std::mutex> lock(g_pool_mutex);
-    for (int k = g_free_count - 1; k >= 0; --k)
-      if (g_free[k].size == size) {
-        char* raw = g_free[k].raw;
-        g_free[k] = g_free[--g_free_count];
+  MemoryPool* pool = t_pool;
+  if (pool) {
+    std::lock_guard<std::mutex> lock(pool->mutex);
+    for (std::size_t k = pool->cached.size(); k-- > 0;)
+      if (pool->cached[k].size == size) {
+        char* raw = pool->cached[k].raw;
+        pool->cached[k] = pool->cached.back();
+        pool->cached.pop_back();
         return raw + kHeader;
       }
   }
   char* raw = static_cast<char*>(std::malloc(size + kHeader));
   if (!raw) return nullptr;
   std::memcpy(raw, &size, sizeof size);
+  std::memcpy(raw + sizeof size, &pool, sizeof pool);
   return raw + kHeader;
 }
 
@@ -62,15 +85,19 @@ void pool_free(void* p) {
   if (!p) return;
   char* raw = static_cast<char*>(p) - kHeader;
   std::size_t size;
+  MemoryPool* pool;
   std::memcpy(&size, raw, sizeof size);
-  {
-    std::lock_guard<std::mutex> lock(g_pool_mutex);
-    if (g_free_count < kPoolSlots) {
-      g_free[g_free_count++] = {size, raw};
-      return;
-    }
+  std::memcpy(&pool, raw + sizeof size, sizeof pool);
+  if (!pool) {
+    std::free(raw);
+    return;
   }
-  std::free(raw);
+  std::lock_guard<std::mutex> lock(pool->mutex);
+  if (pool->cached.size() == MemoryPool::kCapacity) {  // full: drop the oldest
+    std::free(pool->cached.front().raw);
+    pool->cached.erase(pool->cached.begin());
+  }
+  pool->cached.push_back({size, raw});
 }
 
 void* pool_calloc(std::size_t n, std::size_t each) {
@@ -90,13 +117,6 @@ void* pool_realloc(void* p, std::size_t size) {
   std::memcpy(q, p, old);
   pool_free(p);
   return q;
-}
-
-// Releases the cached blocks (when a CHOLMOD factorisation is destroyed).
-void pool_trim() {
-  std::lock_guard<std::mutex> lock(g_pool_mutex);
-  for (int k = 0; k < g_free_count; ++k) std::free(g_free[k].raw);
-  g_free_count = 0;
 }
 
 void install_cholmod_pool() {
@@ -179,6 +199,7 @@ struct LdltBackend {
 
 // ---- CHOLMOD supernodal LL^T -------------------------------------------------------------
 struct CholmodBackend {
+  MemoryPool pool;  // declared first: destroyed last, after CHOLMOD has returned its blocks
   cholmod_common common;
   bool started = false;
   cholmod_factor* factor = nullptr;
@@ -190,12 +211,12 @@ struct CholmodBackend {
   CholmodBackend& operator=(const CholmodBackend&) = delete;
   ~CholmodBackend() {
     if (!started) return;
+    PoolScope scope(pool);
     if (factor) cholmod_free_factor(&factor, &common);
     if (x) cholmod_free_dense(&x, &common);
     if (y) cholmod_free_dense(&y, &common);
     if (e) cholmod_free_dense(&e, &common);
     cholmod_finish(&common);
-    pool_trim();
   }
 
   // A header over H's own arrays (no copy): CHOLMOD reads its lower triangle.
@@ -217,6 +238,7 @@ struct CholmodBackend {
 
   bool analyze(const SpMat& a) {
     install_cholmod_pool();
+    PoolScope scope(pool);
     cholmod_start(&common);
     started = true;
     common.print = 0;
@@ -235,16 +257,26 @@ struct CholmodBackend {
     }
     factor_flops = common.fl;
     solve_flops = 4.0 * common.lnz;
-    return true;
+    // Warm the pool with one factorisation and one solve of the identity on this pattern,
+    // so that the first real ones already find every workspace block (and the solve's
+    // handles exist) and reach the steady allocate/free pattern.
+    SpMat identity = a;
+    for (int col = 0; col < identity.outerSize(); ++col)
+      for (int k = identity.outerIndexPtr()[col]; k < identity.outerIndexPtr()[col + 1]; ++k)
+        identity.valuePtr()[k] = identity.innerIndexPtr()[k] == col ? 1.0 : 0.0;
+    VecX ones = VecX::Ones(a.rows()), out(a.rows());
+    return factorize(identity) && solve(ones, out);
   }
 
   bool factorize(const SpMat& a) {
+    PoolScope scope(pool);
     cholmod_sparse s = view(a);
     cholmod_factorize(&s, factor, &common);
     return common.status == CHOLMOD_OK && factor->minor == factor->n;
   }
 
   bool solve(const VecX& b, VecX& out) {
+    PoolScope scope(pool);
     cholmod_dense rhs{};
     rhs.nrow = rhs.d = rhs.nzmax = static_cast<std::size_t>(b.size());
     rhs.ncol = 1;
