@@ -48,6 +48,11 @@ std::string no_window_message(const std::string& reason) {
          "); for pictures without a display use `invfree render`, or run `xvfb-run -a invfree live ...`";
 }
 
+// An ImGui draw callback: the next draw commands (the opaque frame) without blending.
+void disable_blending(const ImDrawList*, const ImDrawCmd* cmd) {
+  static_cast<const render::GlApi*>(cmd->UserCallbackData)->Disable(GL_BLEND);
+}
+
 // Flips GL's bottom-up RGBA rows into an Image (top row first).
 Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) {
   Image img;
@@ -330,15 +335,20 @@ struct LiveAppImpl {
         injected_keys.push_back(k);
       }
       io.KeyCtrl = inject->ctrl;
+      for (char c : inject->text) io.AddInputCharacter(static_cast<unsigned char>(c));
     }
     ImGui::NewFrame();
     // The picture goes under everything ImGui draws. Drawing the renderer's texture as an
     // ImGui image costs far less than glBlitFramebuffer under llvmpipe (0.5 vs 7 ms at 720p);
     // the texture is filled below, before ImGui's draw data is rendered.
+    // The frame is opaque and covers the window: drawn without blending (a software
+    // rasterizer then only writes, it does not read back every pixel), no clear needed.
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::GetBackgroundDrawList()->AddImage(
-        reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(renderer->texture())), ImVec2(0, 0), display,
-        ImVec2(0, 1), ImVec2(1, 0));
+    ImDrawList* background = ImGui::GetBackgroundDrawList();
+    background->AddCallback(disable_blending, &gl);
+    background->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(renderer->texture())),
+                         ImVec2(0, 0), display, ImVec2(0, 1), ImVec2(1, 0));
+    background->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
     handle_keys();
     handle_mouse();
 
@@ -390,8 +400,6 @@ struct LiveAppImpl {
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.Viewport(0, 0, w, h);
-    gl.ClearColor(1.0f, 1.0f, 1.0f, 1.0f);
-    gl.Clear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
     if (capture) *capture = read_window();

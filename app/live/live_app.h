@@ -53,6 +53,7 @@ struct Injection {
   float wheel = 0;
   std::vector<int> keys;
   bool ctrl = false;
+  std::string text;  // typed characters (ASCII)
 };
 
 // Screen rectangle of a panel widget in the last frame (window pixels).

@@ -291,3 +291,57 @@ TEST(LiveWindow, WheelZoomsAndFRestoresTheView) {
 
 }  // namespace
 }  // namespace invfree::live
+
+namespace invfree::live {
+namespace {
+
+// Types `text` into the panel field `name` (click, Ctrl+A, characters, Enter).
+void type_into(LiveApp& app, const std::string& name, const std::string& text) {
+  const WidgetRect r = app.widget_rects().at(name);
+  Injection in;
+  in.x = 0.5f * (r.x0 + r.x1);
+  in.y = 0.5f * (r.y0 + r.y1);
+  app.frame(&in);
+  in.down[0] = true;
+  app.frame(&in);
+  in.down[0] = false;
+  app.frame(&in);
+  Injection select = in;
+  select.keys = {GLFW_KEY_A};
+  select.ctrl = true;
+  app.frame(&select);
+  Injection typed = in;
+  typed.text = text;
+  app.frame(&typed);
+  Injection enter = in;
+  enter.keys = {GLFW_KEY_ENTER};
+  app.frame(&enter);
+  app.frame(&in);
+}
+
+TEST(LiveWindow, TypedInvalidPoissonRatioIsClampedWithANote) {
+  LiveOptions o;
+  o.paused = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  app->frame();
+  Image before, after;
+  app->frame(nullptr, &before);
+  type_into(*app, "nu", "0.7");
+  double E, nu;
+  young_poisson_from_lame(app->controller().settings().lame, &E, &nu);
+  EXPECT_NEAR(nu, 0.499, 1e-9);
+  EXPECT_NEAR(E, 1e5, 1e-3);  // E kept
+  EXPECT_NE(app->controller().note.find("nu = 0.7 is outside"), std::string::npos) << app->controller().note;
+  app->frame(nullptr, &after);
+  EXPECT_TRUE(app->widget_rects().count("note"));  // the note is on screen
+  EXPECT_GT(differing_pixels(before, after), 500);
+  // A valid E is applied as typed, keeping nu.
+  type_into(*app, "E", "2e5");
+  young_poisson_from_lame(app->controller().settings().lame, &E, &nu);
+  EXPECT_NEAR(E, 2e5, 1e-3);
+  EXPECT_NEAR(nu, 0.499, 1e-9);
+}
+
+}  // namespace
+}  // namespace invfree::live
