@@ -8,6 +8,7 @@
 // the PNG. So a frame costs about the largest of the three, not their sum.
 // Progress (frame i/N, elapsed, ETA) goes to stderr when it is a terminal; a one-line
 // summary to stdout.
+#include <pthread.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -163,6 +164,7 @@ class SimulationThread {
 
  private:
   void run() {
+    pthread_setname_np(pthread_self(), "invfree-sim");  // for top and perf
     for (int f = 0; f < frames_; ++f) {
       if (f > 0) {
         for (int k = 0; k < steps_per_frame_; ++k) {

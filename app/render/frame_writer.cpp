@@ -1,5 +1,7 @@
 #include "app/render/frame_writer.h"
 
+#include <pthread.h>
+
 #include <algorithm>
 
 #include "app/output_files.h"
@@ -132,6 +134,7 @@ long FrameWriter::written() const {
 }
 
 void FrameWriter::work() {
+  pthread_setname_np(pthread_self(), "invfree-png");  // for top and perf
   for (;;) {
     Job job;
     {
