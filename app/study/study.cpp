@@ -1,5 +1,6 @@
 #include "app/study/study.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -23,12 +24,12 @@ struct Plan {
   std::vector<double> implicit_h, explicit_h, tol;
   std::vector<int> mesh_divisor_or_multiplier;  // n_seg values as multiples of the scene's (negative: divide)
   int samples = 5;            // sample times every 40 h (a multiple of every h swept)
-  double reference_h_divisor = 400.0;
+  double reference_h_divisor = 1600.0;
   double reference_tol_factor = 1e-4;
   double mesh_reference_h_divisor = 10.0;
   int mesh_reference_multiplier = 4;
-  double timing_budget_s = 0.2;  // repeat fast runs until this much wall time, keep the fastest
-  int max_repeats = 5;
+  double timing_budget_s = 0.25;  // repeat fast runs until this much wall time, keep the fastest
+  int max_repeats = 25;
 };
 
 Plan make_plan(bool quick) {
@@ -42,9 +43,9 @@ Plan make_plan(bool quick) {
     p.reference_h_divisor = 100.0;
     p.mesh_reference_multiplier = 2;
     p.timing_budget_s = 0.03;
-    p.max_repeats = 2;
+    p.max_repeats = 3;
   } else {
-    p.implicit_h = {4, 2, 1, 0.5, 0.25, 0.125};
+    p.implicit_h = {4, 2, 1, 0.5, 0.25, 0.125, 1.0 / 16, 1.0 / 32, 1.0 / 64};
     p.explicit_h = {0.1, 0.05, 0.025, 0.0125, 0.00625};
     p.tol = {100, 10, 1, 0.1, 0.01, 0.001};
     p.mesh_divisor_or_multiplier = {-2, 1, 2};
@@ -243,6 +244,20 @@ StudyResult run_study(const SceneDef& scene, const StudyOptions& options) {
       errs.push_back(row.error);
     }
   result.lecture_slope = loglog_slope(hs, errs);
+  {
+    // The same fit over the four smallest steps only: where the asymptotic order shows first.
+    std::vector<std::pair<double, double>> pts;
+    for (size_t i = 0; i < hs.size(); ++i)
+      if (std::isfinite(errs[i])) pts.emplace_back(hs[i], errs[i]);
+    std::sort(pts.begin(), pts.end());
+    pts.resize(std::min<size_t>(pts.size(), 4));
+    std::vector<double> x, y;
+    for (const auto& [h, e] : pts) {
+      x.push_back(h);
+      y.push_back(e);
+    }
+    result.lecture_slope_small_h = loglog_slope(x, y);
+  }
   for (const StudyRow& row : result.rows)
     if (row.method == "lecture-no-contact") {
       smooth_hs.push_back(row.h);

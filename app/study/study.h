@@ -4,8 +4,8 @@
 // method the Newton tolerance is swept at the scene's h; for the lecture's method the mesh
 // resolution is swept too. Accuracy: RMS node-position error over the nodes and the
 // sample times, relative to the side length, against a converged reference of the same
-// scene and model (lecture's solver, h / 400, tol / 1e4; computed here). Speed: wall-clock
-// seconds inside step() per simulated second.
+// scene and model (lecture's solver, h / 1600 (quick: / 100), tol / 1e4; computed here).
+// Speed: wall-clock seconds inside step() per simulated second.
 // Inputs: a validated scene and options. Output: the rows of study.csv and the fitted
 // convergence slope; charts are drawn by study_chart.h.
 #pragma once
@@ -51,6 +51,7 @@ struct StudyResult {
   // order shows at every h swept; with stiff contact it only shows for h far below the
   // contact time scale (see the README).
   double smooth_slope = 0.0;
+  double lecture_slope_small_h = 0.0;  // the fit over the four smallest h of the scene itself
   double total_wall_s = 0.0;
   bool stopped = false;  // `stop` returned true: the result is incomplete
 };

@@ -115,10 +115,18 @@ Image study_chart(const StudyResult& r) {
     front.y.push_back(all_y[i]);
   }
   a.series.push_back(front);
+  double h_lo = INFINITY, h_hi = 0.0, e_lo = INFINITY, e_hi = 0.0;
+  for (const StudyRow& row : r.rows) {
+    if (!in_h_sweep(r, row) || !find_method(row.method)) continue;
+    double& lo = find_method(row.method)->implicit() ? h_lo : e_lo;
+    double& hi = find_method(row.method)->implicit() ? h_hi : e_hi;
+    lo = std::min(lo, row.h);
+    hi = std::max(hi, row.h);
+  }
   a.notes.push_back("Error at t = " + join_times(r.sample_times) + " s against a reference of the same model at h = " +
                     fmt(r.reference_h) + " s, tol = " + fmt(r.reference_tol) + " m/s. Implicit methods: h = " +
-                    fmt(r.scene.h * 4) + " ... " + fmt(r.scene.h / 8) + " s; symplectic Euler: h <= " +
-                    fmt(r.scene.h / 10) + " s.");
+                    fmt(h_hi) + " ... " + fmt(h_lo) + " s; symplectic Euler: h = " + fmt(e_hi) + " ... " +
+                    fmt(e_lo) + " s.");
   add_failure_notes(r, in_h_sweep, "h", a.notes);
   for (const std::string& f : r.reference_failures) a.notes.push_back(f);
 
@@ -171,7 +179,8 @@ Image study_chart(const StudyResult& r) {
   }
   b.notes.push_back("Fitted slopes of log(error) against log(h), lecture's method over all its h: " +
                     fmt(r.smooth_slope, "%.3f") + " without contact (each against its own reference), " +
-                    fmt(r.lecture_slope, "%.3f") + " on the scene itself.");
+                    fmt(r.lecture_slope, "%.3f") + " on the scene itself (" + fmt(r.lecture_slope_small_h, "%.2f") +
+                    " over its four smallest h).");
   b.notes.push_back("With contact, the barrier's stiff response at impact (a time scale of about a millisecond) "
                     "and the numerical damping of the vibrations it starts dominate the error at these h; "
                     "first order returns only for h well below that time scale.");
@@ -209,8 +218,21 @@ Image sweeps_chart(const StudyResult& r) {
   for (const StudyRow& row : r.rows)
     if (row.method == "lecture" && in_tol_sweep(r, row)) tol_values.push_back(row.tol);
   std::sort(tol_values.begin(), tol_values.end());
-  c.notes.push_back("Newton stops when |p|_inf / h < tol; tol = " + join_times(tol_values) +
-                    " m/s. Looser is faster until the error of the unfinished solve exceeds the time-step error.");
+  c.notes.push_back("Newton stops when |p|_inf / h < tol; tol = " + join_times(tol_values) + " m/s.");
+  {
+    double e_lo = INFINITY, e_hi = 0.0, w_lo = INFINITY, w_hi = 0.0, t_lo = 0.0, t_hi = 0.0;
+    for (const StudyRow& row : r.rows)
+      if (row.method == "lecture" && in_tol_sweep(r, row) && row.failure == "ok") {
+        e_lo = std::min(e_lo, row.error);
+        e_hi = std::max(e_hi, row.error);
+        if (row.wall_s < w_lo) w_lo = row.wall_s, t_lo = row.tol;
+        if (row.wall_s > w_hi) w_hi = row.wall_s, t_hi = row.tol;
+      }
+    if (std::isfinite(e_lo))
+      c.notes.push_back("Lecture's method: error " + fmt(e_lo) + " ... " + fmt(e_hi) + " over the tolerances that ran; " +
+                        "wall time " + fmt(w_lo) + " s/s (tol = " + fmt(t_lo) + ") ... " + fmt(w_hi) + " s/s (tol = " +
+                        fmt(t_hi) + ").");
+  }
   add_failure_notes(r, in_tol_sweep, "tol", c.notes);
 
   ChartSpec d;
