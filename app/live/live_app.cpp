@@ -41,6 +41,7 @@ int g_glfw_users = 0;
 
 constexpr float kFontSize = 16.0f, kBigFontSize = 40.0f;
 constexpr double kGrabRadiusPixels = 14.0;
+constexpr double kMinEdgeSpacingPixels = 6.0;
 constexpr int kPngCompression = 1;  // fastest zlib level: recording keeps up with the window
 
 std::string no_window_message(const std::string& reason) {
@@ -378,6 +379,9 @@ struct LiveAppImpl {
     const render::Camera cam{view.pixels_per_metre, view.to_screen(Vec2::Zero())};
     render::DrawOptions draw_options;
     draw_options.camera = cam;
+    // Edges closer than a few pixels only grey the picture (and cost the most triangles).
+    const SceneDef& shown = controller->settings();
+    draw_options.edges = shown.side / shown.n_seg * view.pixels_per_metre >= kMinEdgeSpacingPixels;
     // Redrawn only when something it shows changed (paused and untouched: no GL work).
     const long revision = controller->revision();
     if (revision != drawn_revision || cam.pixels_per_metre != drawn_camera.pixels_per_metre ||
