@@ -26,7 +26,7 @@ struct Tick {
 
 AxisRange axis_range(const std::vector<double>& values, bool log);
 std::vector<Tick> axis_ticks(const AxisRange& range);
-// Shortest plain rendering of a tick value (e.g. 0.05, 2, 1e+06 -> "1000000" avoided: %g).
+// Plain rendering of a tick value with up to 6 significant digits (%g), a real minus sign.
 std::string format_tick(double value);
 
 // The plot rectangle in pixels and the two axes.

@@ -33,7 +33,7 @@ struct ChartSpec {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;
   std::vector<Series> series;
-  std::vector<std::string> notes;  // lines of text printed inside the plot area, top left
+  std::vector<std::string> notes;  // paragraphs printed below the legend, word-wrapped
   int width = 1280, height = 800;
 };
 
