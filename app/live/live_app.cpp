@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include <chrono>
+#include <future>
 #include <cstdint>
 #include <cmath>
 #include <cstdio>
@@ -184,6 +185,7 @@ struct LiveAppImpl {
   bool screenshot_requested = false;
   std::vector<int> injected_keys;  // held by the last injection
   long drawn_revision = -1;        // what the renderer's texture shows
+  long recorded_revision = -1;     // the last state written to the recording
   render::Camera drawn_camera;
   int drawn_width = 0, drawn_height = 0;
 
@@ -353,8 +355,6 @@ struct LiveAppImpl {
     handle_keys();
     handle_mouse();
 
-    const int steps = controller->advance_frame();
-
     const PanelRequests req = draw_panel(*controller, panel);
     if (req.screenshot) screenshot_requested = true;
     if (req.toggle_record) toggle_recording();
@@ -393,7 +393,9 @@ struct LiveAppImpl {
       drawn_height = renderer->height();
     }
     const int w = renderer->width(), h = renderer->height();
-    if (recorder && (steps > 0 || record_frame == 0)) {
+    // A recording holds each state once (from the initial one), not idle repeats.
+    if (recorder && revision != recorded_revision) {
+      recorded_revision = revision;
       std::vector<std::uint8_t> rgba;
       renderer->read_pixels(&rgba);
       if (!recorder->submit(record_frame_path(record_dir, record_frame), w, h, std::move(rgba))) {
@@ -402,6 +404,11 @@ struct LiveAppImpl {
         ++record_frame;
       }
     }
+    // The next state is computed while this frame is rasterized and presented (the GL
+    // calls below touch no simulation data; the frame's state was copied for drawing):
+    // on two cores the step and llvmpipe's rasterizer then overlap instead of queueing.
+    std::future<void> stepping;
+    if (controller->playing()) stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.Viewport(0, 0, w, h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -416,6 +423,7 @@ struct LiveAppImpl {
         say("screenshot: " + path);
     }
     glfwSwapBuffers(window);
+    if (stepping.valid()) stepping.get();  // the controller is whole again when frame() returns
     ++frames;
     ++fps_frames;
     const auto now = std::chrono::steady_clock::now();
