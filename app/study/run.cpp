@@ -53,6 +53,7 @@ RunResult run_scene(const SceneDef& scene, const RunOptions& options) {
   Simulation sim = make_simulation(scene);
   RunMonitor monitor;
   monitor.factor = options.blow_up_factor;
+  monitor.inversion_is_failure = options.inversion_is_failure;
   monitor.start(sim, options.duration);
   const long total = step_count(options.duration, scene.h);
   size_t next_sample = 0;

@@ -28,6 +28,9 @@ struct RunOptions {
   std::vector<double> sample_times;  // each a multiple of the scene's h
   double blow_up_factor = 10.0;
   bool keep_frame = false;
+  // The stability table counts det F <= 0 as a failure for every model; the study measures
+  // accuracy and lets the invertible models invert (neo-Hookean never can: the core stops it).
+  bool inversion_is_failure = true;
 };
 
 struct RunResult {

@@ -97,6 +97,7 @@ StudyResult run_study(const SceneDef& scene, const StudyOptions& options) {
   RunOptions run_options;
   run_options.duration = result.duration;
   run_options.sample_times = result.sample_times;
+  run_options.inversion_is_failure = false;
   auto say = [&](const std::string& s) {
     if (options.progress) options.progress(s);
   };

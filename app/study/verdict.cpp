@@ -110,6 +110,7 @@ Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
            std::to_string(initial_energy - floor + ceiling_work) + " J)";
     return Verdict::BlewUp;
   }
+  if (!inversion_is_failure) return Verdict::Ok;
   const auto det = triangle_det_f(sim);
   const bool inverted = std::any_of(det.begin(), det.end(), [](double d) { return !(d > 0.0); });
   if (!inverted) {
@@ -122,7 +123,7 @@ Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
 }
 
 Verdict RunMonitor::at_end(std::string* why) const {
-  if (recovered) return Verdict::Ok;
+  if (recovered || !inversion_is_failure) return Verdict::Ok;
   *why = "started inverted and never recovered (det F <= 0 at the end)";
   return Verdict::Inverted;
 }

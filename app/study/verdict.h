@@ -41,6 +41,7 @@ struct RunMonitor {
   double minimum_budget = 0.0;
   double box_radius = 0.0;
   Vec2 box_center = Vec2::Zero();
+  bool inversion_is_failure = true;  // false: det F <= 0 is allowed (the study, invertible models)
   bool started_inverted = false;  // an invertible model may start inverted and recover
   bool recovered = true;
 
