@@ -423,10 +423,12 @@ struct LinearSolver::Impl {
     p = z;
     double rz = r.dot(z);
     const bool decide = req.threshold > 0.0 && req.lambda_min > 0.0;
+    double decrease = 0.0;
     for (int k = 1; k <= max_iterations; ++k) {
       const double php = multiply(h, p, hp);
       if (!(php > 0.0) || !std::isfinite(php)) return -1;
       const double alpha = rz / php;
+      decrease += alpha * rz;  // twice the decrease of the quadratic model so far
       x += alpha * p;
       r -= alpha * hp;
       ++stats.pcg_iterations;
@@ -443,7 +445,7 @@ struct LinearSolver::Impl {
           z = b - hp;
           if (certain(z.norm())) return 1;
         }
-      } else if (r_norm <= req.forcing * b_norm) {
+      } else if (alpha * rz <= req.forcing * decrease) {
         return 1;  // Newton goes on with this direction (an inexact Newton step)
       }
       if (!apply_preconditioner(h, r, z)) return -1;

@@ -19,9 +19,14 @@
 // penalty), so the error obeys |p - p*|_inf <= |p - p*|_2 <= |b - H p|_2 / lambda_min.
 // PCG stops when either
 //   |p|_inf + bound < threshold   (Newton stops, and p* would stop it too), or
-//   |p|_inf - bound >= threshold and the relative residual is below `forcing`
-//                                 (Newton continues, as with p*; an inexact Newton step), or
+//   |p|_inf >= threshold and the last CG step decreased the quadratic model by less than
+//                                 `forcing` times its total decrease so far (Newton goes on;
+//                                 an inexact Newton step, whatever p* would have said: going
+//                                 on once more never stops Newton early), or
 //   the residual is at the level of a direct solve's rounding (relative 1e-13).
+// The forcing test measures the error in H's energy norm (what the line search feels);
+// a residual 2-norm would be dominated by the stiff contact rows and cost ~25% more
+// iterations for the same Newton progress (measured at n_seg 64).
 // The bound uses the true residual b - H p (recomputed, not CG's recurrence). Every
 // direction PCG returns from a zero start is a descent direction (g.p = -p.H p* < 0 for
 // every CG iterate), so the line search and its invariants are unchanged.
@@ -50,7 +55,7 @@ struct LinearSolveStats {
 struct SolveRequest {
   double threshold = 0.0;   // Newton's |p|_inf stopping threshold (tol * h); 0: none
   double lambda_min = 0.0;  // a lower bound on H's smallest eigenvalue (> 0 for PCG)
-  double forcing = 1e-2;    // relative residual for a direction that will not stop Newton
+  double forcing = 1e-2;    // relative model decrease of the last CG step, for a direction that will not stop Newton
 };
 
 class LinearSolver {

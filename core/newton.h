@@ -36,7 +36,7 @@ struct NewtonSettings {
   bool inversion_filter = true;
   int max_halvings = 60;       // 2^-60: below double precision of any step
   bool predictor = false;      // warm start from the filtered x^n + h v^n
-  double forcing = 1e-2;       // PCG: relative residual of a direction that does not stop Newton
+  double forcing = 1e-2;       // PCG: stop when a CG step adds < 1% to the model decrease (linear_solver.h)
 };
 
 struct NewtonResult {
