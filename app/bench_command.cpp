@@ -177,7 +177,18 @@ bool fit_slope(const std::vector<BenchRow>& rows, double* slope, double* interce
   return fit(32) || fit(1);
 }
 
-Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name) {
+// The reference Python demo's median ms per step on these machines (issue 2), n_seg 4, 8, 16.
+constexpr double kReferenceMs[3] = {36.0, 118.0, 495.0};
+constexpr int kReferenceNseg[3] = {4, 8, 16};
+
+// True when `scene` is the built-in `compress` (any n_seg): the reference applies.
+bool is_reference_scene(SceneDef scene) {
+  const auto compress = find_builtin_scene("compress");
+  scene.n_seg = compress->n_seg;
+  return scene == *compress;
+}
+
+Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bool reference) {
   ChartSpec spec;
   spec.title = "invfree bench: " + scene_name + ", time per step against unknowns";
   spec.x_label = "degrees of freedom (2 x nodes + ceiling)";
@@ -206,6 +217,18 @@ Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name) {
       }
     spec.series.push_back(fitted);
     spec.notes.push_back("fitted slope " + fmt(slope, 3) + " over n_seg >= " + std::to_string(from_n));
+  }
+  if (reference) {
+    Series python{"reference Python demo (median)", {}, {}, Rgb{0.45f, 0.45f, 0.45f}};
+    Series target{"target: reference / 1000", {}, {}, Rgb{0.75f, 0.75f, 0.75f}};
+    target.lines = false;
+    for (int k = 0; k < 3; ++k) {
+      const double dofs = 2.0 * (kReferenceNseg[k] + 1) * (kReferenceNseg[k] + 1) + 1.0;
+      python.x.push_back(dofs), python.y.push_back(kReferenceMs[k]);
+      target.x.push_back(dofs), target.y.push_back(kReferenceMs[k] / 1000.0);
+    }
+    spec.series.push_back(python);
+    spec.series.push_back(target);
   }
   spec.series.push_back(total);
   spec.series.push_back(assembly);
@@ -250,22 +273,28 @@ int run_bench(const BenchOptions& opt) {
 
   std::printf("%-6s %8s %10s %6s %10s %10s %7s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs", "triangles", "steps",
               "median_ms", "mean_ms", "newton", "assembly", "factor", "solve", "search", "pcg", "solver");
+  const bool reference = is_reference_scene(*scene);
   std::vector<BenchRow> rows;
   int code = exit_code::kOk;
   for (int n : sizes) {
     BenchRow row;
     if (!run_size(*scene, n, opt.steps, row, &error, &code)) break;
     rows.push_back(row);
-    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %9.4f %9.4f %9.4f %9.4f %6.2f  %s\n", row.n_seg, row.dofs,
+    std::string speedup;
+    for (int k = 0; k < 3; ++k)
+      if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
+        speedup = "  " + fmt(kReferenceMs[k] / row.median_ms, 4) + "x the reference";
+    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n", row.n_seg, row.dofs,
                 row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton, row.assembly, row.factor,
-                row.solve, row.line_search, row.pcg, row.solver.c_str());
+                row.solve, row.line_search, row.pcg, row.solver.c_str(), speedup.c_str());
     std::fflush(stdout);
   }
   // Whatever completed is written, also after a failure or Ctrl-C.
   if (!rows.empty()) {
     if (auto e = write_file_atomically(opt.out_dir + "/bench.csv", csv_text(rows)); !e.empty())
       return fail(exit_code::kOutputFailed, e);
-    if (auto e = write_png(opt.out_dir + "/bench.png", chart(rows, scene->name)); !e.empty())
+    if (auto e = write_png(opt.out_dir + "/bench.png", chart(rows, scene->name, is_reference_scene(*scene)));
+        !e.empty())
       return fail(exit_code::kOutputFailed, e);
     double slope = 0, intercept = 0;
     int from_n = 0;

@@ -1,6 +1,7 @@
 #include "core/linear_solver.h"
 
 #include <cholmod.h>
+#include <dlfcn.h>
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
@@ -197,6 +198,25 @@ struct LdltBackend {
   }
 };
 
+// ---- BLAS threads ------------------------------------------------------------------------
+// OpenBLAS threads its level-2 and level-3 calls. That pays in a supernodal factorisation
+// (large dense blocks) but not in the triangular solves PCG repeats: there every call
+// wakes the BLAS threads for a small matrix-vector product, which measured 4x slower per
+// CG iteration at n_seg 128 than one thread. The solves run on one BLAS thread and the
+// factorisations on all of them. Looked up at run time: with another BLAS this is a no-op.
+using BlasThreadsFn = void (*)(int);
+BlasThreadsFn blas_set_threads() {
+  static const BlasThreadsFn fn =
+      reinterpret_cast<BlasThreadsFn>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  return fn;
+}
+void set_blas_threads(int n) {
+  static int current = -1;
+  if (n == current) return;
+  if (BlasThreadsFn fn = blas_set_threads()) fn(n);
+  current = n;
+}
+
 // ---- CHOLMOD supernodal LL^T -------------------------------------------------------------
 struct CholmodBackend {
   MemoryPool pool;  // declared first: destroyed last, after CHOLMOD has returned its blocks
@@ -270,6 +290,7 @@ struct CholmodBackend {
 
   bool factorize(const SpMat& a) {
     PoolScope scope(pool);
+    set_blas_threads(thread_count());
     cholmod_sparse s = view(a);
     cholmod_factorize(&s, factor, &common);
     return common.status == CHOLMOD_OK && factor->minor == factor->n;
@@ -277,6 +298,7 @@ struct CholmodBackend {
 
   bool solve(const VecX& b, VecX& out) {
     PoolScope scope(pool);
+    set_blas_threads(1);
     cholmod_dense rhs{};
     rhs.nrow = rhs.d = rhs.nzmax = static_cast<std::size_t>(b.size());
     rhs.ncol = 1;

@@ -1,13 +1,18 @@
 // Google Benchmark figures for the core: per-triangle kernels (ns per triangle for the
-// value, gradient and projected Hessian of each model) and whole `compress` steps at
-// several resolutions (the mesh is run to the compression phase first, so the step
-// measured has active contacts).
+// value, gradient and projected Hessian of each model, and the assembly's fused
+// gradient + Hessian), one whole assembly and one energy evaluation of a compressed
+// mesh (2 threads), and `compress` steps in the compression phase at several
+// resolutions (the mesh is first run to step 120 outside the timing, so the steps
+// measured have the ceiling pushing and contacts active).
 //   build/release/tests/bench/invfree_bench --benchmark_filter=Step
+// The whole-run scaling curve (every phase of the scene, medians) is `invfree bench`.
 #include <benchmark/benchmark.h>
 
 #include <random>
 
+#include "core/incremental_potential.h"
 #include "core/models.h"
+#include "core/parallel.h"
 #include "core/scene.h"
 #include "core/simulation.h"
 #include "core/triangle_elasticity.h"
@@ -65,17 +70,68 @@ BENCHMARK(BM_ProjectedHessian<StableNeoHookean>)->Arg(0)->Arg(1)->ArgName("proje
 BENCHMARK(BM_ProjectedHessian<Arap>)->Arg(0)->ArgName("projection");
 BENCHMARK(BM_ProjectedHessian<LinearElasticity>)->Arg(0)->ArgName("projection");
 
-// One step of `compress` at n_seg = range(0), measured over the whole run of the demo
-// (fall, contact, compression, rest): the mean per step, like the reference timing.
-void BM_CompressStep(benchmark::State& state) {
+template <class M>
+void BM_FusedGradientHessian(benchmark::State& state) {
+  const auto fs = random_fs(1024);
+  const Mat2 IB = Mat2::Identity() * 4.0;
+  Vec6 g;
+  Mat6 H;
+  for (auto _ : state)
+    for (const Mat2& F : fs) {
+      TriangleElasticity<M>::gradient_hessian(F, IB, 0.03, kLame, HessianProjection::Diagonal, g, H);
+      benchmark::DoNotOptimize(H);
+    }
+  state.SetItemsProcessed(state.iterations() * fs.size());
+}
+BENCHMARK(BM_FusedGradientHessian<NeoHookean>);
+BENCHMARK(BM_FusedGradientHessian<StableNeoHookean>);
+
+// A `compress` simulation at n_seg = n run into its compression phase (step 120).
+Simulation compressed(int n_seg) {
   SceneDef scene = *find_builtin_scene("compress");
-  scene.n_seg = static_cast<int>(state.range(0));
+  scene.n_seg = n_seg;
   Simulation sim = make_simulation(scene);
+  for (int k = 0; k < 120; ++k) step(sim);
+  return sim;
+}
+
+VecX state_of(const Simulation& sim) {
+  VecX z(sim.problem.dof_count());
+  z.head(sim.x.size()) = sim.x;
+  z[sim.x.size()] = sim.ceiling_y;
+  return z;
+}
+
+// One gradient + projected Hessian assembly (items: triangles).
+void BM_Assembly(benchmark::State& state) {
+  Simulation sim = compressed(static_cast<int>(state.range(0)));
+  const VecX z = state_of(sim);
+  VecX g;
+  for (auto _ : state) ip_gradient_hessian(sim.problem, z, g, sim.workspace.hessian);
+  state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
+  state.counters["threads"] = thread_count();
+}
+BENCHMARK(BM_Assembly)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
+
+// One incremental-potential evaluation, as in the line search (items: triangles).
+void BM_Energy(benchmark::State& state) {
+  Simulation sim = compressed(static_cast<int>(state.range(0)));
+  const VecX z = state_of(sim);
+  for (auto _ : state) benchmark::DoNotOptimize(ip_energy(sim.problem, z));
+  state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
+}
+BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
+
+// Steps of `compress` at n_seg = range(0) in the compression phase (steps 120-260): the
+// hardest part of the run. The whole-run medians come from `invfree bench`.
+void BM_CompressStep(benchmark::State& state) {
+  const int n_seg = static_cast<int>(state.range(0));
+  Simulation sim = compressed(n_seg);
   long iterations = 0, steps = 0;
   for (auto _ : state) {
-    if (sim.step_count >= 300) {
+    if (sim.step_count >= 260) {
       state.PauseTiming();
-      sim = make_simulation(scene);
+      sim = compressed(n_seg);
       state.ResumeTiming();
     }
     const StepReport r = step(sim);
