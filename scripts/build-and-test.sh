@@ -1,7 +1,32 @@
 #!/usr/bin/env bash
-# Builds the release configuration and runs the whole test suite.
+# Builds invfree and runs the whole test suite, as CI does (.ci/run):
+#   1. release build, every test (ctest)
+#   2. libFuzzer over the scene parser and --set overrides for INVFREE_FUZZ_SECONDS (60)
+#   3. AddressSanitizer + UndefinedBehaviorSanitizer build (preset "sanitize": -O1, assertions on), every test again
+# INVFREE_CI_STAGES picks stages (default "release,fuzz,sanitize"), e.g.
+#   INVFREE_CI_STAGES=release scripts/build-and-test.sh      # the quick local check
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake --preset release >/dev/null
-cmake --build --preset release
-ctest --preset release
+stages=",${INVFREE_CI_STAGES:-release,fuzz,sanitize},"
+start=$SECONDS
+stage() { echo "=== $1 (at $((SECONDS - start)) s)"; }
+
+if [[ $stages == *,release,* ]]; then
+  stage "release: build and test"
+  cmake --preset release >/dev/null
+  cmake --build --preset release
+  ctest --preset release
+fi
+if [[ $stages == *,fuzz,* ]]; then
+  stage "fuzz"
+  bash scripts/fuzz.sh "${INVFREE_FUZZ_SECONDS:-60}"
+fi
+if [[ $stages == *,sanitize,* ]]; then
+  stage "AddressSanitizer + UBSan: build and test"
+  cmake --preset sanitize >/dev/null
+  cmake --build --preset sanitize
+  ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --preset sanitize
+fi
+stage "done"

@@ -474,6 +474,7 @@ TEST(BadInput, FilesThatAreNotScenes) {
 
 TEST(BadInput, OverridesOutOfRangeAndMalformed) {
   const SceneDef base = *find_builtin_scene("compress");
+  const std::string very_long(5000, 'a');  // outlives the table that points into it
   const BadCase cases[] = {
       {"material.nu=0.5", "--set material.nu=0.5: material.nu: must be in [0, 0.5)"},
       {"material.E=0", "material.E: must be > 0"},
@@ -504,7 +505,7 @@ TEST(BadInput, OverridesOutOfRangeAndMalformed) {
       {"material.model=neo hookean", "unknown value \"neo hookean\""},
       {"material.model=\"linear", "unknown value \"\\\"linear\""},
       {"name=x", "--set name=x: expected section.key=value"},
-      {std::string(5000, 'a').c_str(), "expected section.key=value"},
+      {very_long.c_str(), "expected section.key=value"},
   };
   for (const auto& c : cases) {
     SceneDef s = base;
