@@ -25,8 +25,9 @@ namespace invfree::live {
 
 // The n_seg slider's maximum: the largest mesh that still ran at >= 30 frames/s in
 // `invfree live --bench` under Xvfb on the project's 2-core machines (README, "Live
-// classroom mode"). Larger meshes can still be loaded from a scene file or --set.
-constexpr int kDefaultMaxSegments = 64;
+// classroom mode": 40 at 30.1-30.7 frames/s, 48 at 23.6). Larger meshes can still be
+// loaded from a scene file or --set, or allowed with --max-n-seg.
+constexpr int kDefaultMaxSegments = 40;
 
 struct LiveOptions {
   std::vector<SceneChoice> scenes;  // the scene picker; not empty
