@@ -70,64 +70,164 @@ bool has_control_characters(std::string_view text) {
 
 // ---- a guard in front of toml++ 3.3 ------------------------------------------------------
 // toml++ 3.3.0 (Debian 12) reaches __builtin_unreachable() -- undefined behaviour, found by
-// our fuzzer -- when it asks whether a non-ASCII code point in U+00A1..U+0499 is
-// whitespace (upstream issues #190 and #295). It asks that of every character outside
-// strings and comments, and of the first character after a backslash in a basic string.
-// No valid scene has a non-ASCII character in those places, so they are refused here,
-// before toml++ sees them. Returns "" or a reason, with the line in *line.
-std::string tomlpp_hazard(std::string_view t, int* line) {
-  enum class State { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral } state = State::Normal;
-  *line = 1;
-  auto non_ascii = [&](size_t i) { return i < t.size() && static_cast<unsigned char>(t[i]) >= 0x80; };
-  auto at = [&](size_t i, std::string_view s) { return t.substr(i, s.size()) == s; };
-  size_t i = at(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark is fine
-  for (; i < t.size(); ++i) {
-    const char c = t[i];
-    if (c == '\n') ++*line;
-    switch (state) {
-      case State::Normal:
-        if (c == '#') state = State::Comment;
-        else if (at(i, "\"\"\"")) state = State::MultiBasic, i += 2;
-        else if (at(i, "'''")) state = State::MultiLiteral, i += 2;
-        else if (c == '"') state = State::Basic;
-        else if (c == '\'') state = State::Literal;
-        else if (non_ascii(i)) return "non-ASCII character outside a string or comment";
-        break;
-      case State::Comment:
-        if (c == '\n') state = State::Normal;
-        break;
-      case State::Literal:
-        if (c == '\'' || c == '\n') state = State::Normal;
-        break;
-      case State::MultiLiteral:
-        if (at(i, "'''")) {
-          i += 2;
-          while (i + 1 < t.size() && t[i + 1] == '\'') ++i;  // up to two quotes may end the content
-          state = State::Normal;
-        }
-        break;
-      case State::Basic:
-      case State::MultiBasic:
-        if (c == '\\') {
-          // After a backslash toml++ skips blanks and line breaks (a line-ending backslash
-          // in a multi-line string), testing each character for whitespace.
-          size_t j = i + 1;
-          while (j < t.size() && (t[j] == ' ' || t[j] == '\t' || (state == State::MultiBasic && (t[j] == '\n' || t[j] == '\r')))) {
-            if (t[j] == '\n') ++*line;
-            ++j;
-          }
-          if (non_ascii(j)) return "non-ASCII character after a backslash in a string";
-          i = j;  // the escaped character (or the next content) is consumed
-          if (i < t.size() && t[i] == '\n') ++*line;
-        } else if (state == State::Basic && (c == '"' || c == '\n')) {
-          state = State::Normal;
-        } else if (state == State::MultiBasic && at(i, "\"\"\"")) {
-          i += 2;
-          while (i + 1 < t.size() && t[i + 1] == '"') ++i;
-          state = State::Normal;
-        }
-        break;
+// our fuzzer -- when it asks whether a code point in U+00A1..U+0499, U+2C8E..U+3087 (but
+// U+3000) or U+FB26..U+FEFE is whitespace (upstream issues #190 and #295); its parser
+// asks that of characters outside strings, after a backslash in a string, and while
+// reporting some errors. So toml++ never sees such a code point: in a basic string it
+// becomes the equivalent \uXXXX escape, a literal string holding one is rewritten as the
+// equivalent basic string, in a comment it becomes '?', and anywhere else (where no valid
+// scene has a non-ASCII character) the text is refused. Valid TOML keeps its meaning.
+
+bool tomlpp_unsafe(char32_t c) {
+  return (c >= 0xA1 && c <= 0x499) || (c >= 0x2C8E && c <= 0x3087 && c != 0x3000) || (c >= 0xFB26 && c <= 0xFEFE);
+}
+
+// The code point of the UTF-8 sequence at t[i] and its length; 0 for an invalid or
+// truncated sequence (toml++ rejects those before classifying anything).
+size_t utf8_at(std::string_view t, size_t i, char32_t* cp) {
+  const auto b = [&](size_t k) { return static_cast<unsigned char>(t[k]); };
+  const unsigned char c = b(i);
+  const size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+  if (n == 0 || i + n > t.size()) return 0;
+  char32_t v = n == 1 ? c : n == 2 ? (c & 0x1F) : n == 3 ? (c & 0x0F) : (c & 0x07);
+  for (size_t k = 1; k < n; ++k) {
+    if ((b(i + k) & 0xC0) != 0x80) return 0;
+    v = (v << 6) | (b(i + k) & 0x3F);
+  }
+  *cp = v;
+  return n;
+}
+
+std::string unicode_escape(char32_t c) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "\\u%04X", static_cast<unsigned>(c));
+  return buf;
+}
+
+bool has_unsafe(std::string_view text) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    char32_t cp = 0;
+    if (static_cast<unsigned char>(text[i]) >= 0x80 && utf8_at(text, i, &cp) > 1 && tomlpp_unsafe(cp)) return true;
+  }
+  return false;
+}
+
+// Literal-string content as basic-string content: backslashes and quotes escaped, unsafe
+// code points as \uXXXX, everything else (line breaks of a multi-line string too) as is.
+std::string literal_as_basic(std::string_view content) {
+  std::string out;
+  for (size_t i = 0; i < content.size();) {
+    char32_t cp = 0;
+    const size_t n = std::max<size_t>(utf8_at(content, i, &cp), 1);
+    if (n > 1 && tomlpp_unsafe(cp)) {
+      out += unicode_escape(cp);
+    } else {
+      if (content[i] == '\\' || content[i] == '"') out += '\\';
+      out.append(content.substr(i, n));
     }
+    i += n;
+  }
+  return out;
+}
+
+// Returns "" and the text for toml++ in *out, or a reason and its line in *line.
+std::string tomlpp_safe_text(std::string_view t, std::string* out, int* line) {
+  enum class State { Normal, Comment, Basic, MultiBasic } state = State::Normal;
+  out->clear();
+  out->reserve(t.size() + 16);
+  *line = 1;
+  auto at = [&](size_t i, std::string_view s) { return t.substr(i, s.size()) == s; };
+  auto non_ascii = [&](size_t i) { return i < t.size() && static_cast<unsigned char>(t[i]) >= 0x80; };
+  auto copy = [&](size_t from, size_t to) {  // copies t[from, to), counting lines
+    for (size_t k = from; k < to; ++k) *line += t[k] == '\n';
+    out->append(t.substr(from, to - from));
+  };
+  size_t i = at(0, "\xEF\xBB\xBF") ? 3 : 0;  // a byte-order mark is fine
+  copy(0, i);
+  while (i < t.size()) {
+    const char c = t[i];
+    if (state == State::Normal) {
+      if (at(i, "'''") || c == '\'') {
+        // A literal string, copied whole or -- when it holds an unsafe code point --
+        // rewritten as a basic string. It ends at ''' (up to two more quotes belong to
+        // the content) or at ' / a line break.
+        const bool multi = at(i, "'''");
+        const size_t open = multi ? 3 : 1;
+        size_t end = i + open;
+        while (end < t.size() && !(multi ? at(end, "'''") : (t[end] == '\'' || t[end] == '\n'))) ++end;
+        size_t content_end = end, stop = end;
+        if (multi && end < t.size()) {
+          size_t quotes = 3;
+          while (end + quotes < t.size() && t[end + quotes] == '\'' && quotes < 5) ++quotes;
+          content_end = end + quotes - 3;
+          stop = end + quotes;
+        } else if (!multi && end < t.size() && t[end] == '\'') {
+          stop = end + 1;
+        }
+        const bool closed = stop > content_end;
+        const std::string_view content = t.substr(i + open, content_end - (i + open));
+        if (has_unsafe(content)) {
+          const char* quotes = multi ? "\"\"\"" : "\"";
+          for (size_t k = i; k < stop; ++k) *line += t[k] == '\n';
+          *out += quotes;
+          *out += literal_as_basic(content);
+          if (closed) *out += quotes;
+        } else {
+          copy(i, stop);
+        }
+        i = stop;
+        continue;
+      }
+      if (at(i, "\"\"\"")) {
+        copy(i, i + 3);
+        i += 3;
+        state = State::MultiBasic;
+        continue;
+      }
+      if (c == '#') state = State::Comment;
+      if (c == '"') state = State::Basic;
+      if (non_ascii(i)) return "non-ASCII character outside a string or comment";
+      copy(i, i + 1);
+      ++i;
+      continue;
+    }
+    // In a comment or a basic string: unsafe code points are replaced.
+    char32_t cp = 0;
+    const size_t n = non_ascii(i) ? std::max<size_t>(utf8_at(t, i, &cp), 1) : 1;
+    if (n > 1 && tomlpp_unsafe(cp)) {
+      *out += state == State::Comment ? std::string("?") : unicode_escape(cp);
+      i += n;
+      continue;
+    }
+    if (state == State::Comment) {
+      if (c == '\n') state = State::Normal;
+    } else if (c == '\\') {
+      // After a backslash toml++ skips blanks (and, in a multi-line string, line breaks),
+      // testing each character for whitespace; a non-ASCII one there is never valid.
+      size_t j = i + 1;
+      while (j < t.size() && (t[j] == ' ' || t[j] == '\t' ||
+                              (state == State::MultiBasic && (t[j] == '\n' || t[j] == '\r'))))
+        ++j;
+      if (non_ascii(j)) {
+        for (size_t k = i; k < j; ++k) *line += t[k] == '\n';
+        return "non-ASCII character after a backslash in a string";
+      }
+      const size_t upto = std::min(t.size(), j + 1);  // the escaped character goes too
+      copy(i, upto);
+      i = upto;
+      continue;
+    } else if (state == State::Basic && (c == '"' || c == '\n')) {
+      state = State::Normal;
+    } else if (state == State::MultiBasic && at(i, "\"\"\"")) {
+      size_t quotes = 3;
+      while (i + quotes < t.size() && t[i + quotes] == '"' && quotes < 5) ++quotes;
+      copy(i, i + quotes);
+      i += quotes;
+      state = State::Normal;
+      continue;
+    }
+    copy(i, i + n);
+    i += n;
   }
   return "";
 }
@@ -402,13 +502,15 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     out.error = located(source, 0, "not a text file (it contains NUL bytes)");
     return out;
   }
-  if (int line = 0; !tomlpp_hazard(text, &line).empty()) {
-    out.error = located(source, line, "malformed TOML: " + tomlpp_hazard(text, &line));
+  std::string safe_text;
+  int hazard_line = 0;
+  if (const std::string hazard = tomlpp_safe_text(text, &safe_text, &hazard_line); !hazard.empty()) {
+    out.error = located(source, hazard_line, "malformed TOML: " + hazard);
     return out;
   }
   toml::table root;
   try {
-    root = toml::parse(text, source);
+    root = toml::parse(safe_text, source);
   } catch (const toml::parse_error& e) {
     std::string what(e.description());
     std::replace(what.begin(), what.end(), '\n', ' ');
@@ -517,9 +619,10 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   // (--set material.model=linear).
   auto parse_value = [](const std::string& text, toml::table& out) {
     int line = 0;
-    if (!tomlpp_hazard(text, &line).empty()) return false;
+    std::string safe_text;
+    if (!tomlpp_safe_text(text, &safe_text, &line).empty()) return false;
     try {
-      out = toml::parse(text);
+      out = toml::parse(safe_text);
       return true;
     } catch (const toml::parse_error&) {
       return false;

@@ -419,6 +419,21 @@ TEST(BadInput, NonAsciiWhereTomlppMisbehaves) {
     const SceneLoad load = parse_scene_toml(text, "fine.toml");
     EXPECT_TRUE(load.scene) << text << "\n" << load.error;
   }
+  // The fuzzer's second finding: toml++ classifies characters while reporting an error.
+  expect_bad_file("s =0\"\"\"\\n\xc2\xa7\"\"\"\n[ground]", "bad.toml:1: malformed TOML");
+  // Unsafe code points keep their meaning: names (basic, literal, multi-line) and comments.
+  const std::string greek = "\xce\xbc \xce\xbb \xc3\xa9 \xe3\x80\x80 \xef\xbc\x81";  // mu lambda e-acute U+3000 U+FF01
+  const std::vector<std::string> texts = {
+      "name = \"" + greek + "\"\n", "name = '" + greek + "'\n", "name = '''" + greek + "'''\n",
+      "name = \"\"\"" + greek + "\"\"\"\n", "# \xce\xbc = 1e4, \xce\xbb = 4e4\nname = '" + greek + "' # \xce\xbd\n"};
+  for (const std::string& text : texts) {
+    const SceneLoad load = parse_scene_toml(text, "greek.toml");
+    ASSERT_TRUE(load.scene) << text << "\n" << load.error;
+    EXPECT_EQ(load.scene->name, greek) << text;
+  }
+  const SceneLoad quoted = parse_scene_toml("name = '\"\\\xce\xbc'\n", "q.toml");  // quote and backslash too
+  ASSERT_TRUE(quoted.scene) << quoted.error;
+  EXPECT_EQ(quoted.scene->name, "\"\\\xce\xbc");
   report_count("non-ASCII");
 }
 

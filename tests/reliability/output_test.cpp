@@ -246,6 +246,64 @@ void interrupt_run(int sig) {
   fs::remove_all(dir);
 }
 
+// Every PNG under `dir` is whole (signature first, IEND chunk last) and no temporary is
+// left; returns the number of frames.
+int expect_only_complete_pngs(const std::string& dir) {
+  int frames = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << "temporary file left behind: " << name;
+    if (entry.path().extension() != ".png") continue;
+    ++frames;
+    const std::string png = slurp(entry.path().string());
+    EXPECT_GT(png.size(), 20u) << name;
+    if (png.size() <= 20u) continue;
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << name;
+    EXPECT_EQ(png.substr(png.size() - 8), std::string("IEND\xae\x42\x60\x82", 8)) << name << " is truncated";
+  }
+  return frames;
+}
+
+TEST(Interrupt, CtrlCDuringARenderLeavesOnlyCompleteFrames) {
+  const std::string dir = fresh_dir("render_interrupt");
+  test::Process p({INVFREE_EXE, "render", "--frames", "100000", "--size", "160x120", "--out", dir + "/frames"});
+  ASSERT_GT(p.pid(), 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  auto count = [&] {
+    int n = 0;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir + "/frames", ec)) n += e.path().extension() == ".png";
+    return n;
+  };
+  while (count() < 10 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_EQ(::kill(p.pid(), SIGINT), 0);
+  const test::ProcessResult r = p.wait();
+  EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
+  const int frames = expect_only_complete_pngs(dir + "/frames");
+  EXPECT_GE(frames, 10);
+  // Frames 0..n-1, no gap: a movie made from them is whole.
+  for (int i = 0; i < frames; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%06d.png", i);
+    EXPECT_TRUE(fs::exists(dir + "/frames" + name)) << name;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(FullDisk, RenderOnATinyTmpfs) {
+  const std::string dir = fresh_dir("render_tmpfs");
+  TinyFilesystem tiny(dir, "size=256k");
+  if (!tiny.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (" << tiny.reason() << ")";
+  const auto r = run_invfree({"render", "--frames", "400", "--size", "320x240", "--out", dir + "/frames"});
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("No space left on device (disk full)"), std::string::npos) << r.err;
+  EXPECT_GT(expect_only_complete_pngs(dir + "/frames"), 0);
+}
+
 TEST(Interrupt, CtrlCKeepsOnlyCompleteOutput) { interrupt_run(SIGINT); }
 TEST(Interrupt, SigtermKeepsOnlyCompleteOutput) { interrupt_run(SIGTERM); }
 
