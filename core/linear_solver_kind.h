@@ -1,5 +1,5 @@
 // Which linear solver Newton uses for H p = -g (the scene key `[solver] linear_solver`).
-//   auto    - the default: PCG preconditioned by a reused sparse Cholesky factorisation
+//   auto    - the default: PCG preconditioned by a reused sparse LDL^T factorisation
 //             when the Hessian is positive definite by construction (projection "diagonal"
 //             or "full"), a fresh direct LDL^T per iteration otherwise (projection "none")
 //   ldlt    - Eigen's simplicial LDL^T, refactorised every Newton iteration

@@ -148,12 +148,19 @@ TEST(NoAllocation, ImplicitStepsWithEveryLinearSolver) {
   }
 }
 
-// CHOLMOD's own memory is pooled (core/linear_solver.cpp); what remains are the runtimes'
-// records in the steps that refactorise. With the factorisation reused those steps are
-// rare, and a step that reuses it allocates nothing at all.
+// A large mesh: parallel colours and products, METIS-ordered LDL^T with its scratch on the
+// stack, and, with the CHOLMOD backend, CHOLMOD's own memory pooled
+// (core/linear_solver.cpp): what remains there are the runtimes' records in the steps
+// that refactorise, and a step that reuses the factor allocates nothing at all.
 TEST(NoAllocation, LargeMeshWithParallelAssemblyAndCholmod) {
   SceneDef s = *find_builtin_scene("compress");
-  s.n_seg = 82;  // 13,778 unknowns: PCG over CHOLMOD, parallel colours, parallel products
+  s.n_seg = 82;  // 13,778 unknowns: above the METIS and the 16k-stack thresholds' neighbourhood
+  {
+    SceneDef direct = s;
+    direct.linear_solver = LinearSolverKind::Cholmod;
+    const Counts c = allocations_during_run(direct, 3, 20);
+    EXPECT_EQ(c.ours, 0) << "cholmod";
+  }
   set_thread_count(2);
   const Counts c = allocations_during_run(s, 3, 147);
   set_thread_count(0);
