@@ -37,8 +37,11 @@ std::string g_glfw_error;  // the last GLFW error, for one-line messages
 
 void on_glfw_error(int, const char* description) { g_glfw_error = description ? description : "unknown error"; }
 
-// GLFW is process-wide: initialised by the first window, terminated with the last.
-int g_glfw_users = 0;
+// GLFW is process-wide: initialised by the first window and left so until the process
+// exits. glfwTerminate would unload libGL and Mesa's driver, and the allocations they
+// still hold would become unreachable (LeakSanitizer reports them under the sanitize
+// preset); the system reclaims all of it at exit anyway.
+bool g_glfw_initialized = false;
 
 constexpr float kFontSize = 16.0f, kBigFontSize = 40.0f;
 constexpr double kGrabRadiusPixels = 14.0;
@@ -79,7 +82,7 @@ bool display_available() {
 struct LiveAppImpl {
   LiveOptions options;
   GLFWwindow* window = nullptr;
-  bool glfw_ready = false, imgui_glfw = false, imgui_gl = false;
+  bool imgui_glfw = false, imgui_gl = false;
   render::GlApi gl;
   std::unique_ptr<render::Renderer> renderer;
   std::unique_ptr<LiveController> controller;
@@ -116,7 +119,7 @@ struct LiveAppImpl {
     if (imgui_glfw) ImGui_ImplGlfw_Shutdown();
     if (imgui) ImGui::DestroyContext(imgui);
     if (window) glfwDestroyWindow(window);
-    if (glfw_ready && --g_glfw_users == 0) glfwTerminate();
+
   }
 
   void say(const std::string& line) {
@@ -452,12 +455,11 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   a.options = options;
   glfwSetErrorCallback(on_glfw_error);
   g_glfw_error.clear();
-  if (g_glfw_users == 0 && !glfwInit()) {
+  if (!g_glfw_initialized && !glfwInit()) {
     *error = no_window_message(g_glfw_error.empty() ? "GLFW could not start" : g_glfw_error);
     return nullptr;
   }
-  ++g_glfw_users;
-  a.glfw_ready = true;
+  g_glfw_initialized = true;
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
