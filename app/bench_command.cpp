@@ -101,7 +101,8 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
       *error = "n_seg " + std::to_string(n_seg) + ": step " + std::to_string(k + 1) +
                " failed: " + step_status_name(r.status) + ": " + r.message;
       *code = exit_code::kRunFailed;
-      return false;
+      steps = k;  // the row keeps the steps that completed
+      break;
     }
     ms.push_back(r.wall_ms);
     newton += r.newton_iterations;
@@ -132,7 +133,7 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     row.line_search *= inv;
     row.other = std::max(0.0, row.mean_ms - row.assembly - row.factor - row.solve - row.line_search);
   }
-  return true;
+  return *code == exit_code::kOk;
 }
 
 std::string fmt(double v, int precision = 4) {
@@ -278,7 +279,9 @@ int run_bench(const BenchOptions& opt) {
   int code = exit_code::kOk;
   for (int n : sizes) {
     BenchRow row;
-    if (!run_size(*scene, n, opt.steps, row, &error, &code)) break;
+    const bool ok = run_size(*scene, n, opt.steps, row, &error, &code);
+    if (!ok && row.steps == 0) break;
+    if (!ok) row.solver += " (failed at step " + std::to_string(row.steps + 1) + ")";
     rows.push_back(row);
     std::string speedup;
     for (int k = 0; k < 3; ++k)
@@ -288,6 +291,7 @@ int run_bench(const BenchOptions& opt) {
                 row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton, row.assembly, row.factor,
                 row.solve, row.line_search, row.pcg, row.solver.c_str(), speedup.c_str());
     std::fflush(stdout);
+    if (!ok) break;
   }
   // Whatever completed is written, also after a failure or Ctrl-C.
   if (!rows.empty()) {
