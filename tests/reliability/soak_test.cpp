@@ -6,6 +6,7 @@
 // accepted state is not above its value at the step's start. Memory must stay flat.
 #include <gtest/gtest.h>
 #include <malloc.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -56,7 +57,7 @@ long resident_kib() {
   std::ifstream statm("/proc/self/statm");
   long size = 0, resident = 0;
   statm >> size >> resident;
-  return resident * 4;  // pages of 4 KiB on x86-64
+  return resident * (::sysconf(_SC_PAGESIZE) / 1024);
 }
 
 // Independent invariant check; returns "" or what is broken.
