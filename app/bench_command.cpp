@@ -243,7 +243,8 @@ Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bo
 }
 
 // The largest n_seg in (lo, hi) whose median step fits in `budget_ms`, knowing lo fits
-// and hi does not; shorter runs (a third of the steps, at least 60) keep it quick.
+// and hi does not; each candidate runs as many steps as the sweep (a shorter run would
+// see only the cheap falling phase).
 int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_ms, std::string* error, int* code) {
   while (hi - lo > 1) {
     const int mid = lo + (hi - lo) / 2;
@@ -322,7 +323,7 @@ int run_bench(const BenchOptions& opt) {
                   lo, budget);
     } else {
       std::printf("bisecting n_seg in (%d, %d) for %.1f ms per step (%.0f fps):\n", lo, hi, budget, opt.fps);
-      const int best = bisect_fps(*scene, lo, hi, std::max(60, opt.steps / 3), budget, &error, &code);
+      const int best = bisect_fps(*scene, lo, hi, opt.steps, budget, &error, &code);
       if (best < 0) return fail(code, error);
       std::printf("largest n_seg at %.0f fps (median step within %.1f ms): %d\n", opt.fps, budget, best);
     }
