@@ -27,6 +27,7 @@ if [[ $stages == *,sanitize,* ]]; then
   cmake --build --preset sanitize
   ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0" \
     ctest --preset sanitize
 fi
 stage "done"
