@@ -1,14 +1,9 @@
-// Eigen's LDL^T kernel keeps three n-sized scratch arrays on the stack up to this many
-// bytes each (default 128 KB, i.e. 16k unknowns) and on the heap beyond: 4 MB keeps a
-// factorisation allocation-free up to 500k unknowns (n_seg ~500) within an 8 MB stack.
-#define EIGEN_STACK_ALLOCATION_LIMIT (4 << 20)
 #include "core/linear_solver.h"
 
 #include <cholmod.h>
 #include <dlfcn.h>
 
 #include <Eigen/OrderingMethods>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +13,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/sparse_ldlt.h"
 
 namespace invfree {
 
@@ -134,65 +130,29 @@ void install_cholmod_pool() {
   });
 }
 
-// ---- Eigen's simplicial LDL^T without allocation ---------------------------------------
-// SimplicialLDLT::factorize builds a temporary matrix on every call; its numeric kernel
-// factorize_preordered does not (below 16k unknowns its scratch lives on the stack). We
-// permute H ourselves (AMD, once) into the upper triangle and call the kernel directly.
-class PreorderedLdlt : public Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> {
- public:
-  void factorize_preordered_upper(const SpMat& upper) { this->template factorize_preordered<true>(upper); }
-  const SpMat& factor() const { return this->m_matrix; }
-};
-
+// ---- LDL^T (core/sparse_ldlt.h) on a fill-reducing ordering ------------------------------
 struct LdltBackend {
-  std::vector<int> old_to_new;
-  std::vector<int> source;  // upper.valuePtr()[k] = H.valuePtr()[source[k]]
-  SpMat upper;
-  PreorderedLdlt ldlt;
-  VecX permuted_b, permuted_x;
+  SparseLdlt ldlt;
   double factor_flops = 0.0, solve_flops = 0.0;
 
-  // `nested_dissection`: METIS's ordering (through CHOLMOD's analysis) instead of AMD;
-  // less fill on large meshes (6.6M against ~9M entries of L at n_seg 256).
+  // `nested_dissection`: METIS's ordering (through CHOLMOD's analysis) instead of AMD:
+  // less fill on larger meshes (256k against 279k entries of L at n_seg 64, 6.4M against
+  // 8.1M at n_seg 256) and a balanced tree for the threads.
   void analyze(const SpMat& a, bool nested_dissection) {
     const int n = static_cast<int>(a.rows());
-    old_to_new.assign(n, 0);
-    if (nested_dissection && metis_order(a)) {
-      // old_to_new filled by metis_order
-    } else {
-      Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> new_to_old;
+    std::vector<int> new_to_old(n);
+    if (!(nested_dissection && metis_order(a, new_to_old))) {
+      Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;
       Eigen::AMDOrdering<int> amd;
-      amd(a, new_to_old);
-      for (int k = 0; k < n; ++k) old_to_new[new_to_old.indices()[k]] = k;
+      amd(a, perm);
+      for (int k = 0; k < n; ++k) new_to_old[k] = perm.indices()[k];
     }
-    // Permuted upper triangle whose values are the source positions (exact as doubles).
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(a.nonZeros() / 2 + n);
-    for (int col = 0; col < n; ++col)
-      for (int k = a.outerIndexPtr()[col]; k < a.outerIndexPtr()[col + 1]; ++k) {
-        const int i = old_to_new[a.innerIndexPtr()[k]], j = old_to_new[col];
-        if (i <= j) entries.emplace_back(i, j, static_cast<double>(k));
-      }
-    upper.resize(n, n);
-    upper.setFromTriplets(entries.begin(), entries.end());
-    upper.makeCompressed();
-    source.resize(upper.nonZeros());
-    for (int k = 0; k < upper.nonZeros(); ++k) source[k] = static_cast<int>(upper.valuePtr()[k]);
-    ldlt.analyzePattern(upper);
-    // Cost model from the symbolic factor: an up-looking LDL^T does about c_k^2 flops
-    // for a column with c_k off-diagonal entries; a solve reads L twice.
-    const int* lp = ldlt.factor().outerIndexPtr();
-    factor_flops = solve_flops = 0.0;
-    for (int k = 0; k < n; ++k) {
-      const double c = lp[k + 1] - lp[k];
-      factor_flops += c * c + c;
-      solve_flops += 4.0 * c + 1.0;
-    }
-    permuted_b.resize(n);
-    permuted_x.resize(n);
+    ldlt.analyze(a, new_to_old, n >= kParallelLdltMinUnknowns ? kLdltBins : 1);
+    factor_flops = ldlt.factor_flops();
+    solve_flops = ldlt.solve_flops();
   }
 
-  bool metis_order(const SpMat& a) {
+  static bool metis_order(const SpMat& a, std::vector<int>& new_to_old) {
     cholmod_common c;
     cholmod_start(&c);
     c.print = 0;
@@ -214,28 +174,16 @@ struct LdltBackend {
     cholmod_factor* f = cholmod_analyze(&view, &c);
     const bool ok = f && c.status == CHOLMOD_OK && c.selected == 0;  // METIS, not a fallback
     if (ok) {
-      const int* perm = static_cast<const int*>(f->Perm);  // new -> old
-      for (int k = 0; k < static_cast<int>(a.rows()); ++k) old_to_new[perm[k]] = k;
+      const int* perm = static_cast<const int*>(f->Perm);
+      for (int k = 0; k < static_cast<int>(a.rows()); ++k) new_to_old[k] = perm[k];
     }
     if (f) cholmod_free_factor(&f, &c);
     cholmod_finish(&c);
     return ok;
   }
 
-  bool factorize(const SpMat& a) {
-    const double* src = a.valuePtr();
-    double* dst = upper.valuePtr();
-    for (std::size_t k = 0; k < source.size(); ++k) dst[k] = src[source[k]];
-    ldlt.factorize_preordered_upper(upper);
-    return ldlt.info() == Eigen::Success;
-  }
-
-  void solve(const VecX& b, VecX& x) {
-    const int n = static_cast<int>(b.size());
-    for (int i = 0; i < n; ++i) permuted_b[old_to_new[i]] = b[i];
-    permuted_x = ldlt.solve(permuted_b);
-    for (int i = 0; i < n; ++i) x[i] = permuted_x[old_to_new[i]];
-  }
+  bool factorize(const SpMat& a, bool positive_definite) { return ldlt.factorize(a, positive_definite); }
+  void solve(const VecX& b, VecX& x) { ldlt.solve(b, x); }
 };
 
 // ---- BLAS threads ------------------------------------------------------------------------
@@ -378,6 +326,7 @@ double multiply(const SpMat& h, const VecX& v, VecX& y) {
 
 struct LinearSolver::Impl {
   bool pcg = false;
+  bool positive_definite = true;
   bool cholmod = false;
   LdltBackend ldlt;
   CholmodBackend chol;
@@ -396,7 +345,7 @@ struct LinearSolver::Impl {
 
   bool factorize(const SpMat& h, LinearSolveStats& stats) {
     const auto t0 = Clock::now();
-    const bool ok = cholmod ? chol.factorize(h) : ldlt.factorize(h);
+    const bool ok = cholmod ? chol.factorize(h) : ldlt.factorize(h, positive_definite);
     stats.factor_ms += ms_since(t0);
     ++stats.factorizations;
     have_factor = ok;
@@ -531,6 +480,7 @@ void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool posit
   positive_definite_ = positive_definite;
   impl_ = std::make_unique<Impl>();
   Impl& s = *impl_;
+  s.positive_definite = positive_definite;
   const int n = static_cast<int>(pattern.rows());
   switch (kind) {
     case LinearSolverKind::Ldlt:

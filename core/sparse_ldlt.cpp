@@ -1,0 +1,338 @@
+#include "core/sparse_ldlt.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+
+namespace invfree {
+
+namespace {
+
+// Elimination tree of the symmetric matrix whose upper triangle is (ap, ai) (Liu's
+// algorithm with path compression). parent[k] = -1 for a root.
+void elimination_tree(int n, const std::vector<int>& ap, const std::vector<int>& ai, std::vector<int>& parent) {
+  std::vector<int> ancestor(n, -1);
+  parent.assign(n, -1);
+  for (int k = 0; k < n; ++k)
+    for (int p = ap[k]; p < ap[k + 1]; ++p)
+      for (int i = ai[p]; i != -1 && i < k;) {
+        const int next = ancestor[i];
+        ancestor[i] = k;
+        if (next == -1) parent[i] = k;
+        i = next;
+      }
+}
+
+// Upper triangle of P A P^T (old_to_new: P) with sorted rows; source[k] is the position
+// of entry k in A's value array.
+void permuted_upper(const Eigen::SparseMatrix<double>& a, const std::vector<int>& old_to_new, std::vector<int>& ap,
+                    std::vector<int>& ai, std::vector<int>& source) {
+  const int n = static_cast<int>(a.rows());
+  const int* outer = a.outerIndexPtr();
+  const int* inner = a.innerIndexPtr();
+  ap.assign(n + 1, 0);
+  for (int col = 0; col < n; ++col)
+    for (int k = outer[col]; k < outer[col + 1]; ++k) {
+      const int i = old_to_new[inner[k]], j = old_to_new[col];
+      if (i <= j) ++ap[j + 1];
+    }
+  for (int j = 0; j < n; ++j) ap[j + 1] += ap[j];
+  std::vector<std::pair<int, int>> entries(ap[n]);
+  std::vector<int> fill(ap.begin(), ap.end() - 1);
+  for (int col = 0; col < n; ++col)
+    for (int k = outer[col]; k < outer[col + 1]; ++k) {
+      const int i = old_to_new[inner[k]], j = old_to_new[col];
+      if (i <= j) entries[fill[j]++] = {i, k};
+    }
+  ai.resize(ap[n]);
+  source.resize(ap[n]);
+  for (int j = 0; j < n; ++j) {
+    std::sort(entries.begin() + ap[j], entries.begin() + ap[j + 1]);
+    for (int p = ap[j]; p < ap[j + 1]; ++p) {
+      ai[p] = entries[p].first;
+      source[p] = entries[p].second;
+    }
+  }
+}
+
+}  // namespace
+
+void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>& new_to_old, int bins) {
+  n_ = static_cast<int>(pattern.rows());
+  const int n = n_;
+  // Postorder the elimination tree of the given ordering: same fill, subtrees contiguous.
+  old_to_new_.assign(n, 0);
+  for (int k = 0; k < n; ++k) old_to_new_[new_to_old[k]] = k;
+  permuted_upper(pattern, old_to_new_, ap_, ai_, source_);
+  elimination_tree(n, ap_, ai_, parent_);
+  std::vector<int> child_begin(n + 2, 0), children(n);
+  for (int k = 0; k < n; ++k) ++child_begin[(parent_[k] == -1 ? n : parent_[k]) + 1];
+  for (int k = 0; k <= n; ++k) child_begin[k + 1] += child_begin[k];
+  {
+    std::vector<int> fill(child_begin.begin(), child_begin.end() - 1);
+    for (int k = 0; k < n; ++k) children[fill[parent_[k] == -1 ? n : parent_[k]]++] = k;
+  }
+  std::vector<int> post;  // post[new position] = node of the given ordering
+  post.reserve(n);
+  std::vector<std::pair<int, int>> stack;  // (node, next child slot); n = virtual root
+  stack.push_back({n, child_begin[n]});
+  while (!stack.empty()) {
+    auto& [node, next] = stack.back();
+    if (next < child_begin[node + 1]) {
+      const int c = children[next++];
+      stack.push_back({c, child_begin[c]});
+    } else {
+      if (node != n) post.push_back(node);
+      stack.pop_back();
+    }
+  }
+  for (int k = 0; k < n; ++k) old_to_new_[new_to_old[post[k]]] = k;
+  permuted_upper(pattern, old_to_new_, ap_, ai_, source_);
+  elimination_tree(n, ap_, ai_, parent_);
+  ax_.assign(ap_.size() ? ap_[n] : 0, 0.0);
+
+  // Symbolic factor: column counts, then the row indices in the order the numeric
+  // factorisation writes them (rows ascending).
+  lnz_.assign(n, 0);
+  std::vector<int> flag(n, -1);
+  for (int k = 0; k < n; ++k) {
+    flag[k] = k;
+    for (int p = ap_[k]; p < ap_[k + 1]; ++p)
+      for (int i = ai_[p]; flag[i] != k; i = parent_[i]) {
+        ++lnz_[i];
+        flag[i] = k;
+      }
+  }
+  lp_.assign(n + 1, 0);
+  for (int k = 0; k < n; ++k) lp_[k + 1] = lp_[k] + lnz_[k];
+  li_.assign(lp_[n], 0);
+  lx_.assign(lp_[n], 0.0);
+  d_.assign(n, 0.0);
+  std::fill(lnz_.begin(), lnz_.end(), 0);
+  std::fill(flag.begin(), flag.end(), -1);
+  for (int k = 0; k < n; ++k) {
+    flag[k] = k;
+    for (int p = ap_[k]; p < ap_[k + 1]; ++p)
+      for (int i = ai_[p]; flag[i] != k; i = parent_[i]) {
+        li_[lp_[i] + lnz_[i]++] = k;
+        flag[i] = k;
+      }
+  }
+  factor_flops_ = solve_flops_ = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double c = lp_[k + 1] - lp_[k];
+    factor_flops_ += c * c + c;
+    solve_flops_ += 4.0 * c + 1.0;
+  }
+  plan(std::clamp(bins, 1, 64));
+  work_.resize(n);
+}
+
+// Cuts the postordered tree into a top and disjoint subtrees over `bins` bins,
+// minimising (serial top work) + (largest bin's work) over successive expansions of the
+// heaviest subtree; work = a column's share of one solve.
+void SparseLdlt::plan(int bins) {
+  const int n = n_;
+  std::vector<double> w(n), subtree(n);
+  std::vector<int> first(n);
+  for (int j = 0; j < n; ++j) {
+    w[j] = 2.0 * (lp_[j + 1] - lp_[j]) + 1.0;
+    subtree[j] = w[j];
+    first[j] = j;
+  }
+  for (int j = 0; j < n; ++j)  // postorder: every child before its parent
+    if (parent_[j] != -1) {
+      subtree[parent_[j]] += subtree[j];
+      first[parent_[j]] = std::min(first[parent_[j]], first[j]);
+    }
+  std::vector<std::vector<int>> children(n);
+  std::vector<int> roots;
+  for (int j = 0; j < n; ++j) (parent_[j] == -1 ? roots : children[parent_[j]]).push_back(j);
+  double total = 0.0;
+  for (int r : roots) total += subtree[r];
+
+  // Largest-first assignment of the candidate subtrees to bins; returns the largest bin.
+  auto heavier = [&](int a, int b) { return subtree[a] != subtree[b] ? subtree[a] > subtree[b] : a < b; };
+  auto assign = [&](std::vector<int> cand, std::vector<int>* owner) {
+    std::sort(cand.begin(), cand.end(), heavier);
+    std::vector<double> load(bins, 0.0);
+    for (int c : cand) {
+      const int b = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
+      load[b] += subtree[c];
+      if (owner) owner->push_back(b);
+    }
+    return *std::max_element(load.begin(), load.end());
+  };
+  auto expand = [&](std::vector<int>& cand, double& top_work) {
+    auto it = std::min_element(cand.begin(), cand.end(), heavier);
+    const int c = *it;
+    cand.erase(it);
+    top_work += w[c];
+    for (int child : children[c]) cand.push_back(child);
+  };
+
+  std::vector<int> cand = roots;
+  double top_work = 0.0;
+  int best_steps = 0;
+  double best_cost = bins == 1 ? 0.0 : assign(cand, nullptr);
+  if (bins > 1)
+    for (int step = 1; step <= 4 * n && !cand.empty(); ++step) {
+      expand(cand, top_work);
+      if (top_work > 0.5 * total) break;
+      const double cost = top_work + assign(cand, nullptr);
+      if (cost < best_cost) {
+        best_cost = cost;
+        best_steps = step;
+      }
+    }
+  cand = roots;
+  top_work = 0.0;
+  for (int step = 0; step < best_steps; ++step) expand(cand, top_work);
+  serial_fraction_ = total > 0.0 ? top_work / total : 0.0;
+
+  std::sort(cand.begin(), cand.end(), heavier);
+  std::vector<int> owner;
+  assign(cand, &owner);
+  std::vector<std::vector<std::pair<int, int>>> per_bin(bins);
+  std::vector<char> is_top(n, 1);
+  for (std::size_t k = 0; k < cand.size(); ++k) {
+    const int c = cand[k];
+    per_bin[owner[k]].push_back({first[c], c + 1});
+    for (int j = first[c]; j <= c; ++j) is_top[j] = 0;
+  }
+  ranges_.clear();
+  range_begin_.assign(1, 0);
+  for (auto& r : per_bin) {
+    std::sort(r.begin(), r.end());
+    ranges_.insert(ranges_.end(), r.begin(), r.end());
+    range_begin_.push_back(static_cast<int>(ranges_.size()));
+  }
+  top_.clear();
+  for (int j = 0; j < n; ++j)
+    if (is_top[j]) top_.push_back(j);
+  // A column's rows are its ancestors: those in its own subtree come first (they are
+  // numbered below the subtree's root), the top ones after.
+  split_.assign(n, 0);
+  for (int j = 0; j < n; ++j) {
+    int p = lp_[j];
+    while (p < lp_[j + 1] && !is_top[li_[p]]) ++p;
+    split_[j] = p;
+  }
+  scratch_.assign(bins, Scratch{});
+  for (Scratch& s : scratch_) {
+    s.y.assign(n, 0.0);
+    s.acc.assign(n, 0.0);
+    s.flag.assign(n, -1);
+    s.pattern.assign(n, 0);
+  }
+}
+
+// Rows [begin, end) of the up-looking factorisation (Davis 2005, ldl_numeric).
+void SparseLdlt::factor_rows(int begin, int end, Scratch& s, bool positive_definite, bool& ok) {
+  double* y = s.y.data();
+  int* flag = s.flag.data();
+  int* pattern = s.pattern.data();
+  const int n = n_;
+  for (int k = begin; k < end && ok; ++k) {
+    y[k] = 0.0;
+    int head = n;
+    flag[k] = k;
+    lnz_[k] = 0;
+    for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
+      int i = ai_[p];
+      y[i] += ax_[p];
+      int len = 0;
+      for (; flag[i] != k; i = parent_[i]) {
+        pattern[len++] = i;
+        flag[i] = k;
+      }
+      while (len > 0) pattern[--head] = pattern[--len];
+    }
+    double dk = y[k];
+    y[k] = 0.0;
+    for (; head < n; ++head) {
+      const int i = pattern[head];
+      const double yi = y[i];
+      y[i] = 0.0;
+      const int p2 = lp_[i] + lnz_[i];
+      for (int p = lp_[i]; p < p2; ++p) y[li_[p]] -= lx_[p] * yi;
+      const double l_ki = yi / d_[i];
+      dk -= l_ki * yi;
+      lx_[p2] = l_ki;
+      ++lnz_[i];
+    }
+    d_[k] = dk;
+    if (!std::isfinite(dk) || (positive_definite ? !(dk > 0.0) : dk == 0.0)) ok = false;
+  }
+}
+
+bool SparseLdlt::factorize(const Eigen::SparseMatrix<double>& a, bool positive_definite) {
+  const double* values = a.valuePtr();
+  for (std::size_t k = 0; k < source_.size(); ++k) ax_[k] = values[source_[k]];
+  const int bins = static_cast<int>(scratch_.size());
+  bool ok_bin[64];
+  thread_pool().run(bins, [&](int b) {
+    ok_bin[b] = true;
+    // Marks of an earlier factorisation would stop this one's row walks early.
+    std::fill(scratch_[b].flag.begin(), scratch_[b].flag.end(), -1);
+    for (int r = range_begin_[b]; r < range_begin_[b + 1]; ++r)
+      factor_rows(ranges_[r].first, ranges_[r].second, scratch_[b], positive_definite, ok_bin[b]);
+  });
+  bool ok = true;
+  for (int b = 0; b < bins; ++b) ok = ok && ok_bin[b];
+  for (std::size_t t = 0; t < top_.size() && ok; ++t) factor_rows(top_[t], top_[t] + 1, scratch_[0], positive_definite, ok);
+  return ok;
+}
+
+void SparseLdlt::solve(const VecX& b, VecX& x) {
+  const int n = n_;
+  double* y = work_.data();
+  const int* lp = lp_.data();
+  const int* li = li_.data();
+  const double* lx = lx_.data();
+  const double* d = d_.data();
+  for (int i = 0; i < n; ++i) y[old_to_new_[i]] = b[i];
+  const int bins = static_cast<int>(scratch_.size());
+  // Forward: L y = b, the subtrees per bin, then the top.
+  thread_pool().run(bins, [&](int bin) {
+    double* acc = scratch_[bin].acc.data();
+    for (int r = range_begin_[bin]; r < range_begin_[bin + 1]; ++r)
+      for (int j = ranges_[r].first; j < ranges_[r].second; ++j) {
+        const double yj = y[j];
+        const int s = split_[j];
+        for (int p = lp[j]; p < s; ++p) y[li[p]] -= lx[p] * yj;
+        for (int p = s; p < lp[j + 1]; ++p) acc[li[p]] -= lx[p] * yj;
+      }
+  });
+  for (int t : top_) {
+    double v = y[t];
+    for (Scratch& s : scratch_) {
+      v += s.acc[t];
+      s.acc[t] = 0.0;
+    }
+    y[t] = v;
+  }
+  for (int t : top_) {
+    const double yt = y[t];
+    for (int p = lp[t]; p < lp[t + 1]; ++p) y[li[p]] -= lx[p] * yt;
+  }
+  // Backward: D L^T x = y, the top first, then the subtrees per bin.
+  for (auto it = top_.rbegin(); it != top_.rend(); ++it) {
+    const int t = *it;
+    double v = y[t] / d[t];
+    for (int p = lp[t]; p < lp[t + 1]; ++p) v -= lx[p] * y[li[p]];
+    y[t] = v;
+  }
+  thread_pool().run(bins, [&](int bin) {
+    for (int r = range_begin_[bin + 1]; r-- > range_begin_[bin];)
+      for (int j = ranges_[r].second; j-- > ranges_[r].first;) {
+        double v = y[j] / d[j];
+        for (int p = lp[j]; p < lp[j + 1]; ++p) v -= lx[p] * y[li[p]];
+        y[j] = v;
+      }
+  });
+  for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];
+}
+
+}  // namespace invfree
