@@ -11,7 +11,8 @@ namespace {
 
 // Elimination tree of the symmetric matrix whose upper triangle is (ap, ai) (Liu's
 // algorithm with path compression). parent[k] = -1 for a root.
-void elimination_tree(int n, const std::vector<int>& ap, const std::vector<int>& ai, std::vector<int>& parent) {
+void elimination_tree(int n, const std::vector<int>& ap, const std::vector<int>& ai,
+                      std::vector<int>& parent) {
   std::vector<int> ancestor(n, -1);
   parent.assign(n, -1);
   for (int k = 0; k < n; ++k)
@@ -26,8 +27,8 @@ void elimination_tree(int n, const std::vector<int>& ap, const std::vector<int>&
 
 // Upper triangle of P A P^T (old_to_new: P) with sorted rows; source[k] is the position
 // of entry k in A's value array.
-void permuted_upper(const Eigen::SparseMatrix<double>& a, const std::vector<int>& old_to_new, std::vector<int>& ap,
-                    std::vector<int>& ai, std::vector<int>& source) {
+void permuted_upper(const Eigen::SparseMatrix<double>& a, const std::vector<int>& old_to_new,
+                    std::vector<int>& ap, std::vector<int>& ai, std::vector<int>& source) {
   const int n = static_cast<int>(a.rows());
   const int* outer = a.outerIndexPtr();
   const int* inner = a.innerIndexPtr();
@@ -58,7 +59,8 @@ void permuted_upper(const Eigen::SparseMatrix<double>& a, const std::vector<int>
 
 }  // namespace
 
-void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>& new_to_old, int bins) {
+void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
+                         const std::vector<int>& new_to_old, int bins) {
   n_ = static_cast<int>(pattern.rows());
   const int n = n_;
   // Postorder the elimination tree of the given ordering: same fill, subtrees contiguous.
@@ -153,7 +155,9 @@ void SparseLdlt::plan(int bins) {
   for (int r : roots) total += subtree[r];
 
   // Largest-first assignment of the candidate subtrees to bins; returns the largest bin.
-  auto heavier = [&](int a, int b) { return subtree[a] != subtree[b] ? subtree[a] > subtree[b] : a < b; };
+  auto heavier = [&](int a, int b) {
+    return subtree[a] != subtree[b] ? subtree[a] > subtree[b] : a < b;
+  };
   auto assign = [&](std::vector<int> cand, std::vector<int>* owner) {
     std::sort(cand.begin(), cand.end(), heavier);
     std::vector<double> load(bins, 0.0);
@@ -281,7 +285,8 @@ bool SparseLdlt::factorize(const Eigen::SparseMatrix<double>& a, bool positive_d
   });
   bool ok = true;
   for (int b = 0; b < bins; ++b) ok = ok && ok_bin[b];
-  for (std::size_t t = 0; t < top_.size() && ok; ++t) factor_rows(top_[t], top_[t] + 1, scratch_[0], positive_definite, ok);
+  for (std::size_t t = 0; t < top_.size() && ok; ++t)
+    factor_rows(top_[t], top_[t] + 1, scratch_[0], positive_definite, ok);
   return ok;
 }
 

@@ -31,7 +31,8 @@ class SparseLdlt {
  public:
   // new_to_old: a fill-reducing ordering of the pattern's rows; it is postordered here.
   // bins: how many independent parts to cut the tree into (1: serial).
-  void analyze(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>& new_to_old, int bins);
+  void analyze(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>& new_to_old,
+               int bins);
   // Numeric factorisation of `a` (same pattern as analysed). False when a pivot is not
   // finite or zero, or (with `positive_definite`) not positive. Without it an indefinite
   // matrix with nonzero pivots factorises (an exact, unprojected Hessian).

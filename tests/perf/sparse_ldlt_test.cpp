@@ -40,7 +40,8 @@ SpMat mesh_matrix(int n_seg, double shift, unsigned seed) {
     double sum = 0.0;
     for (SpMat::InnerIterator it(a, col); it; ++it)
       if (it.row() != col) sum += std::abs(it.value());
-    a.coeffRef(col, col) = sum + (shift < 0.0 && col % 7 == 3 ? shift - 2.0 * sum : std::abs(shift));
+    a.coeffRef(col, col) =
+        sum + (shift < 0.0 && col % 7 == 3 ? shift - 2.0 * sum : std::abs(shift));
   }
   return a;
 }
@@ -132,7 +133,8 @@ TEST(SparseLdlt, BitIdenticalForAnyThreadCount) {
   }
   set_thread_count(0);
   for (std::size_t k = 1; k < results.size(); ++k)
-    EXPECT_EQ(0, std::memcmp(results[0].data(), results[k].data(), sizeof(double) * results[0].size()))
+    EXPECT_EQ(0,
+              std::memcmp(results[0].data(), results[k].data(), sizeof(double) * results[0].size()))
         << "threads differ";
 }
 
