@@ -10,6 +10,8 @@
 namespace invfree {
 
 namespace {
+constexpr int kMaxExpansions = 4;  // alpha up to 16
+
 // The ceiling may jump to its target when that keeps every node at least 10% of its
 // current gap away (the plane filter's rule); until then the penalty pulls it there.
 bool ceiling_target_is_safe(const StepProblem& p, const VecX& z) {
@@ -33,7 +35,8 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
   const int n = problem.node_count();
   const int dofs = problem.dof_count();
   const PlaneFilter planes{problem.ground_on, problem.ground_y, problem.ceiling_on};
-  const bool filter_inversions = settings.inversion_filter && !model_allows_inversion(problem.model);
+  const bool filter_inversions =
+      settings.inversion_filter && !model_allows_inversion(problem.model);
   if (ws.direction.size() != dofs) ws.direction.resize(dofs);
   if (ws.rhs.size() != dofs) ws.rhs.resize(dofs);
   if (ws.trial.size() != dofs) ws.trial.resize(dofs);
@@ -51,7 +54,8 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     ws.direction.head(2 * n) = problem.x_tilde - z.head(2 * n);
     if (problem.ceiling_on) ws.direction[2 * n] = 0.0;
     double alpha = plane_step(planes, n, z, ws.direction);
-    if (filter_inversions) alpha = std::min(alpha, inversion_free_step(*problem.mesh, z, ws.direction));
+    if (filter_inversions)
+      alpha = std::min(alpha, inversion_free_step(*problem.mesh, z, ws.direction));
     if (alpha > 0.0) z.head(2 * n) += alpha * ws.direction.head(2 * n);
     result.line_search_ms += ms_since(t);
   }
@@ -61,6 +65,15 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
   const bool psd = problem.projection != HessianProjection::None;
   SolveRequest request;
   request.forcing = settings.forcing;
+
+  // Friction nodes whose slip changed sign in an accepted step (see newton.h).
+  const bool damp_flips = settings.friction_flip_damping && problem.friction_on;
+  if (damp_flips) {
+    if (static_cast<int>(ws.friction_flipped.size()) != n) ws.friction_flipped.resize(n);
+    if (static_cast<int>(ws.damped_diagonal.size()) != n) ws.damped_diagonal.resize(n);
+    std::fill(ws.friction_flipped.begin(), ws.friction_flipped.end(), 0);
+  }
+  const double h2 = problem.h * problem.h;
 
   double energy = timed_energy(z);
   for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations) {
@@ -72,22 +85,56 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     auto t = Clock::now();
     ip_gradient_hessian(problem, z, ws.gradient, ws.hessian);
     ws.rhs = -ws.gradient;
+    // H + h^2 mu_f lambda_i / |u_i| on the x-diagonal of every marked node still sliding:
+    // the curvature of the friction's tightest quadratic bound through u = 0 (IPC's own
+    // f1(y)/y term, that the 1D tangent lacks), so p no longer overshoots the stick window.
+    bool damped = false;
+    if (damp_flips) {
+      double* values = ws.hessian.values();
+      for (int i = 0; i < n; ++i) {
+        if (!ws.friction_flipped[i]) continue;
+        const double u = std::abs(z[2 * i] - problem.x_start[2 * i]);
+        if (u < problem.friction_eps_u) continue;
+        const int slot = ws.hessian.diagonal_slots[2 * i];
+        ws.damped_diagonal[i] = values[slot];
+        values[slot] += h2 * problem.friction_weight[i] / u;
+        damped = true;
+      }
+    }
     result.assembly_ms += ms_since(t);
+    if (damped) ++result.damped_solves;
 
     request.threshold = settings.tol * problem.h;
     request.lambda_min = 0.0;
     if (psd) {
       double lambda = ws.min_node_mass;
-      if (problem.ceiling_on) lambda = std::min(lambda, problem.ceiling_fixed ? 1.0 : problem.ceiling_stiffness);
+      if (problem.ceiling_on)
+        lambda = std::min(lambda, problem.ceiling_fixed ? 1.0 : problem.ceiling_stiffness);
       request.lambda_min = lambda;
     } else {
-      request.forcing = 1e-13;  // no error bound: an iterative solve must be as exact as a direct one
+      request.forcing =
+          1e-13;  // no error bound: an iterative solve must be as exact as a direct one
     }
     if (!ws.solver.solve(ws.hessian.matrix, ws.rhs, ws.direction, request, result.linear)) {
       result.status = StepStatus::LinearSolveFailed;
       break;
     }
     result.residual = ws.direction.lpNorm<Eigen::Infinity>() / problem.h;
+    // The stopping test is made on a direction of the unmodified Hessian only.
+    if (damped && result.residual < settings.tol && result.iterations > 0) {
+      double* values = ws.hessian.values();
+      for (int i = 0; i < n; ++i) {
+        if (!ws.friction_flipped[i]) continue;
+        if (std::abs(z[2 * i] - problem.x_start[2 * i]) < problem.friction_eps_u) continue;
+        values[ws.hessian.diagonal_slots[2 * i]] = ws.damped_diagonal[i];
+      }
+      std::fill(ws.friction_flipped.begin(), ws.friction_flipped.end(), 0);
+      if (!ws.solver.solve(ws.hessian.matrix, ws.rhs, ws.direction, request, result.linear)) {
+        result.status = StepStatus::LinearSolveFailed;
+        break;
+      }
+      result.residual = ws.direction.lpNorm<Eigen::Infinity>() / problem.h;
+    }
     // Never accept the starting point without one step: where the whole step's motion is
     // below tol * h (a square at rest, h g < tol: h < 1e-3 s at tol = 1e-2 m/s) it would
     // be accepted unchanged every step and the square would never start to fall.
@@ -108,7 +155,8 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
 
     t = Clock::now();
     double alpha = plane_step(planes, n, z, ws.direction);
-    if (filter_inversions) alpha = std::min(alpha, inversion_free_step(*problem.mesh, z, ws.direction));
+    if (filter_inversions)
+      alpha = std::min(alpha, inversion_free_step(*problem.mesh, z, ws.direction));
     result.line_search_ms += ms_since(t);
     // Near convergence the decrease a step can bring, -alpha g.p, falls below the
     // rounding noise of E itself (~1e-16 |E|); comparing energies is then meaningless and
@@ -116,7 +164,8 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     // quadratic model is exact to far better than the noise); the stopping test on
     // |p|_inf / h is unchanged.
     const double predicted_decrease = -alpha * ws.gradient.dot(ws.direction);
-    const double energy_noise = 64.0 * std::numeric_limits<double>::epsilon() * (std::abs(energy) + 1.0);
+    const double energy_noise =
+        64.0 * std::numeric_limits<double>::epsilon() * (std::abs(energy) + 1.0);
     if (predicted_decrease >= 0.0 && predicted_decrease < energy_noise) {
       ws.trial = z + alpha * ws.direction;
       const double trial_energy = timed_energy(ws.trial);
@@ -139,6 +188,37 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
       result.status = StepStatus::NewtonFailed;
       break;
     }
+    // Step expansion (newton.h): the full step was taken and E fell at least 1.5 times
+    // what the quadratic model predicts, so the true curvature along p is below half the
+    // model's and its minimiser lies beyond alpha = 2.
+    if (settings.step_expansion && halvings == 0 && alpha == 1.0) {
+      ws.trial2.noalias() = ws.hessian.matrix * ws.direction;
+      const double model_decrease =
+          -(ws.gradient.dot(ws.direction) + 0.5 * ws.direction.dot(ws.trial2));
+      if (model_decrease > 0.0 && energy - trial_energy > 1.5 * model_decrease) {
+        double step = 1.0;
+        for (int k = 0; k < kMaxExpansions; ++k) {
+          const double next = 2.0 * step;
+          ws.trial2 = next * ws.direction;
+          if (plane_step(planes, n, z, ws.trial2) < 1.0) break;
+          if (filter_inversions && inversion_free_step(*problem.mesh, z, ws.trial2) < 1.0) break;
+          ws.trial2 += z;
+          const double e2 = timed_energy(ws.trial2);
+          if (!(e2 < trial_energy)) break;
+          ws.trial.swap(ws.trial2);
+          trial_energy = e2;
+          step = next;
+        }
+        if (step > 1.0) ++result.expanded_steps;
+      }
+    }
+    if (damp_flips)  // mark the sliding nodes this step carries across u = 0
+      for (int i = 0; i < n; ++i) {
+        if (problem.friction_weight[i] <= 0.0) continue;
+        const double u0 = z[2 * i] - problem.x_start[2 * i],
+                     u1 = ws.trial[2 * i] - problem.x_start[2 * i];
+        if (u0 * u1 < 0.0 && std::abs(u1) >= problem.friction_eps_u) ws.friction_flipped[i] = 1;
+      }
     z.swap(ws.trial);
     energy = trial_energy;
   }

@@ -40,6 +40,8 @@ struct SceneDef {
   bool inversion_filter = true;
   Integrator integrator = Integrator::ImplicitEuler;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;  // see core/linear_solver_kind.h
+  bool step_expansion = true;                               // Newton's safeguards, core/newton.h
+  bool friction_flip_damping = true;
   // [initial]
   Vec2 initial_velocity = Vec2::Zero();
   // [gravity]

@@ -364,6 +364,10 @@ const KeySpec kKeys[] = {
      }},
     {"solver", "inversion_filter",
      [](SceneDef& s, const toml::node& n) { return read_bool(n, s.inversion_filter); }},
+    {"solver", "step_expansion",
+     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.step_expansion); }},
+    {"solver", "friction_flip_damping",
+     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.friction_flip_damping); }},
     {"solver", "integrator",
      [](SceneDef& s, const toml::node& n) {
        return set_enum<Integrator>(n, s.integrator, integrator_from_name,
@@ -698,7 +702,9 @@ std::string scene_to_toml(const SceneDef& s) {
   o << "\n[time]\nh = " << s.h << "\ntol = " << s.tol << "\nmax_newton = " << s.max_newton << "\n";
   o << "\n[solver]\nprojection = \"" << projection_name(s.projection) << "\"\ninversion_filter = "
     << (s.inversion_filter ? "true" : "false") << "\nintegrator = \"" << integrator_name(s.integrator)
-    << "\"\nlinear_solver = \"" << linear_solver_name(s.linear_solver) << "\"\n";
+    << "\"\nlinear_solver = \"" << linear_solver_name(s.linear_solver) << "\"\nstep_expansion = "
+    << (s.step_expansion ? "true" : "false")
+    << "\nfriction_flip_damping = " << (s.friction_flip_damping ? "true" : "false") << "\n";
   o << "\n[initial]\nvelocity = " << vec(s.initial_velocity) << "\n";
   o << "\n[gravity]\n" << enabled(s.has_gravity) << "g = " << vec(s.gravity) << "\n";
   o << "\n[ground]\n" << enabled(s.has_ground) << "y = " << s.ground_y << "\nfriction = " << s.friction << "\n";

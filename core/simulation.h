@@ -30,6 +30,8 @@ struct StepReport {
   int factorizations = 0;
   int pcg_iterations = 0;
   int energy_evaluations = 0;
+  int damped_solves = 0;  // Newton's safeguards at work (core/newton.h)
+  int expanded_steps = 0;
 };
 
 // A spring pulling one node toward a target (the live window's grab), on while dragging.
@@ -46,12 +48,12 @@ struct Simulation {
   std::vector<double> node_mass;
   double ceiling_mass = 0.0;
   // State.
-  VecX x, v;                  // 2N each
-  double ceiling_y = 0.0;     // actual height (within tol * h of ceiling_nominal)
+  VecX x, v;               // 2N each
+  double ceiling_y = 0.0;  // actual height (within tol * h of ceiling_nominal)
   double ceiling_nominal = 0.0;
   double time = 0.0;
   long step_count = 0;
-  PullSpring pull;            // input: applied by every step while on
+  PullSpring pull;  // input: applied by every step while on
   // Solver workspace (sparsity pattern and symbolic factorisation, built once per mesh)
   // and the step's scratch vectors: a step allocates nothing.
   NewtonWorkspace workspace;

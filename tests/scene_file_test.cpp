@@ -176,6 +176,7 @@ const std::map<std::string, Kind>& key_kinds() {
       {"material.lambda", Kind::Number},    {"time.h", Kind::Number},
       {"time.tol", Kind::Number},           {"time.max_newton", Kind::Integer},
       {"solver.projection", Kind::Enum},    {"solver.inversion_filter", Kind::Bool},
+      {"solver.step_expansion", Kind::Bool}, {"solver.friction_flip_damping", Kind::Bool},
       {"solver.integrator", Kind::Enum},    {"initial.velocity", Kind::Vec2},
       {"solver.linear_solver", Kind::Enum},
       {"gravity.enabled", Kind::Bool},      {"gravity.g", Kind::Vec2},
