@@ -40,6 +40,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
   if (ws.direction.size() != dofs) ws.direction.resize(dofs);
   if (ws.rhs.size() != dofs) ws.rhs.resize(dofs);
   if (ws.trial.size() != dofs) ws.trial.resize(dofs);
+  if (ws.trial2.size() != dofs) ws.trial2.resize(dofs);
 
   auto timed_energy = [&](const VecX& at) {
     const auto t = Clock::now();
@@ -149,6 +150,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
         return result;
       }
       problem.ceiling_stiffness *= 2.0;  // converged short of the ceiling's target
+      ++result.penalty_doublings;
       energy = timed_energy(z);
       continue;
     }

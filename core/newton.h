@@ -69,8 +69,9 @@ struct NewtonResult {
   double assembly_ms = 0.0;
   double line_search_ms = 0.0;
   int energy_evaluations = 0;
-  int damped_solves = 0;   // directions solved with friction flip damping
-  int expanded_steps = 0;  // accepted steps longer than the Newton step
+  int damped_solves = 0;      // directions solved with friction flip damping
+  int expanded_steps = 0;     // accepted steps longer than the Newton step
+  int penalty_doublings = 0;  // times the ceiling's penalty stiffness doubled
   LinearSolveStats linear;
 };
 

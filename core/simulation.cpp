@@ -14,7 +14,9 @@ namespace {
 
 constexpr double kCeilingInitialStiffness = 1000.0;  // the demo's DBC_stiff, times the mass
 
-BarrierParams barrier_params(const SceneDef& s) { return {s.dhat, s.kappa, s.contact_area()}; }
+BarrierParams barrier_params(const SceneDef& s) {
+  return {s.dhat, s.kappa, s.contact_area()};
+}
 
 double next_ceiling_nominal(const SceneDef& s, double nominal) {
   return nominal > s.ceiling_stop ? nominal + s.h * s.ceiling_velocity : nominal;
@@ -83,11 +85,12 @@ void fill_problem(Simulation& sim) {
     // Warm start: keep the stiffness the last step needed. Restarting from the demo's
     // initial value let a stiff square (E = 1e8) push the ceiling back up every step and
     // spend Newton's whole iteration budget re-doubling k.
-    p.ceiling_stiffness = std::max(kCeilingInitialStiffness * sim.ceiling_mass, p.ceiling_stiffness);
+    p.ceiling_stiffness =
+        std::max(kCeilingInitialStiffness * sim.ceiling_mass, p.ceiling_stiffness);
     p.ceiling_fixed = false;
   }
-  p.pull_on = sim.pull.on && sim.pull.node >= 0 && sim.pull.node < n && sim.pull.target.allFinite() &&
-              sim.pull.stiffness > 0.0;
+  p.pull_on = sim.pull.on && sim.pull.node >= 0 && sim.pull.node < n &&
+              sim.pull.target.allFinite() && sim.pull.stiffness > 0.0;
   p.pull_node = sim.pull.node;
   p.pull_target = sim.pull.target;
   p.pull_stiffness = sim.pull.stiffness;
@@ -135,6 +138,7 @@ StepReport implicit_euler_step(Simulation& sim, double& ceiling_new) {
   report.energy_evaluations = r.energy_evaluations;
   report.damped_solves = r.damped_solves;
   report.expanded_steps = r.expanded_steps;
+  report.penalty_doublings = r.penalty_doublings;
   if (r.status == StepStatus::NewtonFailed)
     report.message = r.iterations >= settings.max_iterations
                          ? "Newton reached its iteration cap (" + std::to_string(r.iterations) + ")"
@@ -142,6 +146,22 @@ StepReport implicit_euler_step(Simulation& sim, double& ceiling_new) {
   if (r.status == StepStatus::LinearSolveFailed) report.message = "the linear solve broke down";
   sim.x_new = z.head(2 * n);
   ceiling_new = sim.scene.has_ceiling ? z[2 * n] : 0.0;
+  if (sim.scene.has_ceiling && r.status == StepStatus::Ok) {
+    // The body pushes the ceiling with h^2 R (R: the barrier forces at the solution). The
+    // next step starts with a penalty that alone would hold the ceiling within tol h / 2
+    // of its target against that push. The demo's initial k (1000 times a node's mass)
+    // let a compressed body lift the ceiling by centimetres in the first iterations of a
+    // step whose ceiling could not jump to its target, and Newton then spent its budget
+    // doubling k back (n_seg 256: k 15 -> 969 in one step, then the cap of 100).
+    double reaction = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double d = z[2 * n] - z[2 * i + 1];
+      if (d < sim.problem.barrier.dhat) reaction -= barrier_derivative(d, sim.problem.barrier);
+    }
+    const double h = sim.scene.h;
+    sim.problem.ceiling_stiffness =
+        std::max(sim.problem.ceiling_stiffness, 2.0 * h * h * reaction / (sim.scene.tol * h));
+  }
   return report;
 }
 
@@ -170,7 +190,8 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
         f.x() -= friction_derivative(s.h * sim.v[2 * i], -s.friction * db, kFrictionEpsV * s.h);
     }
     if (s.has_ceiling) f.y() += barrier_derivative(sim.ceiling_y - y, b);
-    if (sim.pull.on && sim.pull.node == i) f -= sim.pull.stiffness * (sim.x.segment<2>(2 * i) - sim.pull.target);
+    if (sim.pull.on && sim.pull.node == i)
+      f -= sim.pull.stiffness * (sim.x.segment<2>(2 * i) - sim.pull.target);
     v_new.segment<2>(2 * i) += s.h / sim.node_mass[i] * f;
   }
   sim.x_new = sim.x + s.h * v_new;

@@ -32,6 +32,7 @@ struct StepReport {
   int energy_evaluations = 0;
   int damped_solves = 0;  // Newton's safeguards at work (core/newton.h)
   int expanded_steps = 0;
+  int penalty_doublings = 0;  // the ceiling's penalty doubled (converged short of the target)
 };
 
 // A spring pulling one node toward a target (the live window's grab), on while dragging.

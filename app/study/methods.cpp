@@ -8,38 +8,61 @@ namespace {
 
 const std::vector<Method>& table() {
   static const std::vector<Method> methods = {
-      {"lecture", "lecture: diagonal-space projection + inversion filter",
+      {"lecture",
+       "lecture: diagonal-space projection + inversion filter (+ Newton safeguards)",
        {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
-        "solver.integrator=implicit-euler"}},
-      {"full-eigen-clamp", "6x6 eigenvalue clamp + inversion filter",
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_flip_damping=true"}},
+      {"plain-line-search",
+       "lecture without Newton's safeguards (halving only)",
+       {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler", "solver.step_expansion=false",
+        "solver.friction_flip_damping=false"}},
+      {"full-eigen-clamp",
+       "6x6 eigenvalue clamp + inversion filter",
        {"material.model=neo-hookean", "solver.projection=full", "solver.inversion_filter=true",
-        "solver.integrator=implicit-euler"}},
-      {"no-projection", "no projection (plain Newton) + inversion filter",
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_flip_damping=true"}},
+      {"no-projection",
+       "no projection (plain Newton) + inversion filter",
        {"material.model=neo-hookean", "solver.projection=none", "solver.inversion_filter=true",
-        "solver.integrator=implicit-euler"}},
-      {"no-inversion-filter", "diagonal projection, backtracking only",
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_flip_damping=true"}},
+      {"no-inversion-filter",
+       "diagonal projection, backtracking only",
        {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=false",
-        "solver.integrator=implicit-euler"}},
-      {"symplectic-euler", "symplectic Euler (explicit), neo-Hookean",
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_flip_damping=true"}},
+      {"symplectic-euler",
+       "symplectic Euler (explicit), neo-Hookean",
        {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
-        "solver.integrator=symplectic-euler"},
+        "solver.integrator=symplectic-euler", "solver.step_expansion=true",
+        "solver.friction_flip_damping=true"},
        20},
-      {"linear", "linear elasticity, projected Newton",
+      {"linear",
+       "linear elasticity, projected Newton",
        {"material.model=linear", "solver.projection=diagonal", "solver.inversion_filter=true",
-        "solver.integrator=implicit-euler"}},
-      {"arap", "ARAP, projected Newton",
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_flip_damping=true"}},
+      {"arap",
+       "ARAP, projected Newton",
        {"material.model=arap", "solver.projection=diagonal", "solver.inversion_filter=true",
-        "solver.integrator=implicit-euler"}},
-      {"stable-neo-hookean", "stable neo-Hookean, projected Newton",
-       {"material.model=stable-neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
-        "solver.integrator=implicit-euler"}},
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_flip_damping=true"}},
+      {"stable-neo-hookean",
+       "stable neo-Hookean, projected Newton",
+       {"material.model=stable-neo-hookean", "solver.projection=diagonal",
+        "solver.inversion_filter=true", "solver.integrator=implicit-euler",
+        "solver.step_expansion=true", "solver.friction_flip_damping=true"}},
   };
   return methods;
 }
 
 }  // namespace
 
-std::span<const Method> study_methods() { return table(); }
+std::span<const Method> study_methods() {
+  return table();
+}
 
 const Method* find_method(const std::string& name) {
   for (const Method& m : table())

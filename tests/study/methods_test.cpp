@@ -28,7 +28,7 @@ TEST(Methods, EachIsAValidSetOfSceneOverrides) {
     again.h = s.h;
     EXPECT_TRUE(again == s) << m.name << ": the result depends on the scene's own solver settings";
   }
-  EXPECT_EQ(names.size(), 8u);
+  EXPECT_EQ(names.size(), 9u);
   EXPECT_EQ(find_method("nonexistent"), nullptr);
 }
 
@@ -43,6 +43,12 @@ TEST(Methods, SettingsAreTheIssuesFamilies) {
   EXPECT_EQ(s.projection, HessianProjection::Diagonal);
   EXPECT_TRUE(s.inversion_filter);
   EXPECT_EQ(s.integrator, Integrator::ImplicitEuler);
+  EXPECT_TRUE(s.step_expansion);
+  EXPECT_TRUE(s.friction_flip_damping);
+  const SceneDef plain = with("plain-line-search");
+  EXPECT_FALSE(plain.step_expansion);
+  EXPECT_FALSE(plain.friction_flip_damping);
+  EXPECT_EQ(plain.projection, HessianProjection::Diagonal);
   EXPECT_EQ(with("full-eigen-clamp").projection, HessianProjection::Full);
   EXPECT_EQ(with("no-projection").projection, HessianProjection::None);
   EXPECT_FALSE(with("no-inversion-filter").inversion_filter);
@@ -54,7 +60,8 @@ TEST(Methods, SettingsAreTheIssuesFamilies) {
   EXPECT_EQ(with("stable-neo-hookean").model, Model::StableNeoHookean);
   EXPECT_EQ(method_command_line(*find_method("no-projection")),
             "--set material.model=neo-hookean --set solver.projection=none --set solver.inversion_filter=true "
-            "--set solver.integrator=implicit-euler");
+            "--set solver.integrator=implicit-euler --set solver.step_expansion=true "
+            "--set solver.friction_flip_damping=true");
 }
 
 TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {

@@ -130,7 +130,7 @@ TEST(StabilityCommand, QuickSweepClassifiesEveryCell) {
     failures += verdict != "ok" && verdict != "n/a";
   }
   EXPECT_EQ(lecture_cells, 11);
-  EXPECT_EQ(rows.size(), 1u + 8u * 11u);
+  EXPECT_EQ(rows.size(), 1u + 9u * 11u);
   EXPECT_GT(failures, 0) << "the stress scenes must break some method";
   fs::remove_all(dir);
 }
