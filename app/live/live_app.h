@@ -24,10 +24,10 @@
 namespace invfree::live {
 
 // The n_seg slider's maximum: the largest mesh that still ran at >= 30 frames/s in
-// `invfree live --bench` under Xvfb on the project's 2-core machines (README, "Live
-// classroom mode": 40 at 30.1-30.7 frames/s, 48 at 23.6). Larger meshes can still be
-// loaded from a scene file or --set, or allowed with --max-n-seg.
-constexpr int kDefaultMaxSegments = 40;
+// `invfree live --frames 300 --bench` under Xvfb on the project's 2-core machine, idle
+// (README, "Live classroom mode": 84 at 30.5 frames/s, 88 at 29.4). Larger meshes can
+// still be loaded from a scene file or --set, or allowed with --max-n-seg.
+constexpr int kDefaultMaxSegments = 84;
 
 struct LiveOptions {
   std::vector<SceneChoice> scenes;  // the scene picker; not empty
