@@ -113,8 +113,8 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
         lambda = std::min(lambda, problem.ceiling_fixed ? 1.0 : problem.ceiling_stiffness);
       request.lambda_min = lambda;
     } else {
-      request.forcing =
-          1e-13;  // no error bound: an iterative solve must be as exact as a direct one
+      // No error bound: an iterative solve must be as exact as a direct one.
+      request.forcing = 1e-13;
     }
     if (!ws.solver.solve(ws.hessian.matrix, ws.rhs, ws.direction, request, result.linear)) {
       result.status = StepStatus::LinearSolveFailed;
