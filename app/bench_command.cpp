@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -344,7 +345,8 @@ void register_bench_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--out", opt->out_dir, "output directory for bench.csv and bench.png")
       ->capture_default_str()
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->check(non_empty_path());
   cmd->add_option("--threads", opt->threads, "worker threads (default: every core)")->check(CLI::Range(1, 256));
   cmd->add_option("--fps", opt->fps,
                   "then find the largest n_seg whose median step fits in one frame at this rate")

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/live/key_bindings.h"
@@ -97,14 +98,17 @@ void register_live_command(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::Range(0, 100000000));
   cmd->add_option("--screenshot", opt->live.screenshot_file, "save the last frame (window as shown) as a PNG")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(non_empty_path());
   cmd->add_option("--screenshot-dir", opt->live.screenshot_dir,
                   "where Ctrl+P saves invfree_NNNN.png and Record makes invfree_recording_NNNN/")
       ->capture_default_str()
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->check(non_empty_path());
   cmd->add_option("--record", opt->live.record_dir,
                   "record from the start: DIR/frame_000000.png, ... (as `invfree render`); DIR must be empty")
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->check(non_empty_path());
   cmd->add_flag("--bench", opt->live.bench, "print frames per second (with the simulation running) at the end");
   cmd->add_flag("--paused", opt->live.paused, "start paused");
   cmd->add_flag("--no-panel", opt->live.hide_panel, "start with the panel hidden (Tab shows it)");

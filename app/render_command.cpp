@@ -28,6 +28,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -319,7 +320,8 @@ void register_render_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--out", opt->out, "output directory (must be empty or new, see --force)")
       ->type_name("DIR")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_empty_path());
   cmd->add_option("--size", opt->size, "frame size in pixels")->type_name("WxH")->capture_default_str();
   cmd->add_flag("--no-edges", opt->no_edges, "do not draw the triangle edges");
   cmd->add_flag("--mp4", opt->mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -130,11 +131,13 @@ void register_simulate_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 100000000));
   cmd->add_option("--obj", opt->obj_dir,
                   "write DIR/<k>.obj after k steps (k = 0 is the initial mesh); DIR must be empty or new")
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->check(non_empty_path());
   cmd->add_option("--csv", opt->csv_path,
                   "write one row per step: step,t,newton_iters,residual,energy,min_det_F,max_det_F,"
                   "min_gap,ceiling_y,wall_ms")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(non_empty_path());
   cmd->add_flag("--force", opt->force, "write into a non-empty --obj directory");
   cmd->callback([opt, &exit_code] { exit_code = run_simulate(*opt); });
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -76,7 +77,8 @@ void register_stability_command(CLI::App& app, int& exit_code) {
       "stability", "run every method on every stress scene; write stability.md, stability.csv, stability.png");
   cmd->add_option("--out", opt->out, "directory for stability.md, stability.csv and stability.png")
       ->type_name("DIR")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_empty_path());
   cmd->add_flag("--quick", opt->quick, "only the first 2 s of each scene");
   cmd->add_flag("--quiet", opt->quiet, "no progress lines on stderr");
   cmd->callback([opt, &exit_code] { exit_code = run_stability_command(*opt); });

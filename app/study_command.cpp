@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -73,7 +74,8 @@ void register_study_command(CLI::App& app, int& exit_code) {
   opt->scene.add_to(cmd);
   cmd->add_option("--out", opt->out, "directory for study.csv, study.png and study-sweeps.png")
       ->type_name("DIR")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_empty_path());
   cmd->add_flag("--quick", opt->quick, "fewer and shorter runs (under a minute on 2 cores)");
   cmd->add_flag("--quiet", opt->quiet, "no progress lines on stderr");
   cmd->callback([opt, &exit_code] { exit_code = run_study_command(*opt); });

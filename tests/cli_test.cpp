@@ -158,6 +158,17 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --set material.model=neohookean", "unknown value \"neohookean\" (expected one of"},
       {"simulate --set gravity.g=1", "gravity.g: expected an array of two numbers"},
       {"simulate --obj " + dir, dir + ": directory is not empty (use --force to write into it anyway)"},
+      // An empty path is bad input for every output option (study and stability used to
+      // write their files at the filesystem root).
+      {"simulate --obj ''", "--obj: empty path"},
+      {"simulate --csv ''", "--csv: empty path"},
+      {"render --out ''", "--out: empty path"},
+      {"bench --out '' --sizes 4", "--out: empty path"},
+      {"study --out ''", "--out: empty path"},
+      {"stability --out ''", "--out: empty path"},
+      {"live --record ''", "--record: empty path"},
+      {"live --screenshot ''", "--screenshot: empty path"},
+      {"live --screenshot-dir ''", "--screenshot-dir: empty path"},
       {"simulate extra_positional", "extra_positional"},
       {"", "subcommand"},
       {"simulate --steps 5 --steps 6", "--steps"},
