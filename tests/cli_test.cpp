@@ -14,30 +14,15 @@
 #include <sstream>
 #include <vector>
 
+#include "tests/run_command.h"
+
+namespace invfree {
 namespace {
 
-struct CommandResult {
-  int code;
-  std::string out, err;
-};
+using test::CommandResult;
+using test::slurp;
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CommandResult run(const std::string& args) {
-  const std::string dir = ::testing::TempDir();
-  // ctest runs tests in parallel processes: name the capture files after this one.
-  static int counter = 0;
-  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string out = dir + "/cli_out_" + tag + ".txt", err = dir + "/cli_err_" + tag + ".txt";
-  const std::string cmd = std::string(INVFREE_EXE) + " " + args + " >" + out + " 2>" + err;
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
+CommandResult run(const std::string& args) { return test::run_command(INVFREE_EXE, args, false); }
 
 TEST(Cli, SimulateWritesCsvAndObj) {
   const std::string dir = ::testing::TempDir() + "/cli_sim_" + std::to_string(::getpid());
@@ -205,3 +190,4 @@ TEST(Cli, StepFailureNamesTheStepAndKeepsCompleteOutput) {
 }
 
 }  // namespace
+}  // namespace invfree

@@ -11,32 +11,15 @@
 #include <vector>
 
 #include "app/live/key_bindings.h"
+#include "tests/run_command.h"
 
 namespace invfree::live {
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Result = test::CommandResult;
 
 // Runs invfree with no display at all (DISPLAY and WAYLAND_DISPLAY removed).
-Result run_headless(const std::string& args) {
-  static int counter = 0;
-  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string out = ::testing::TempDir() + "/live_cli_out_" + tag, err = ::testing::TempDir() + "/live_cli_err_" + tag;
-  const std::string cmd = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(INVFREE_EXE) + " " + args + " >" + out +
-                          " 2>" + err + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
+Result run_headless(const std::string& args) { return test::run_command(INVFREE_EXE, args, true); }
 
 int lines(const std::string& s) {
   int n = 0;

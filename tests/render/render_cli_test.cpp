@@ -13,32 +13,18 @@
 #include <string>
 
 #include "tests/render/image_compare.h"
+#include "tests/run_command.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int code;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using invfree::test::CommandResult;
+using invfree::test::slurp;
 
 // Runs `invfree ARGS` without a display (and with `env` first, if given).
 CommandResult run(const std::string& args, const std::string& env = "") {
-  static int counter = 0;
-  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string out = ::testing::TempDir() + "/render_out_" + tag, err = ::testing::TempDir() + "/render_err_" + tag;
-  const std::string cmd = "env -u DISPLAY -u WAYLAND_DISPLAY " + env + " " + INVFREE_EXE + " " + args + " >" + out +
-                          " 2>" + err + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  return invfree::test::run_command(INVFREE_EXE, args, true, env);
 }
 
 std::string fresh_dir(const std::string& name) {

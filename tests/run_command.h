@@ -1,0 +1,49 @@
+// Runs the invfree executable the way a user does, for the command-line tests: stdout
+// and stderr captured into files named after this process and call (ctest runs tests in
+// parallel processes), the exit code decoded (-1 when the process did not exit
+// normally). `headless` removes DISPLAY and WAYLAND_DISPLAY and gives stdin /dev/null;
+// `env` ("NAME=value ...") is set for the command only.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace invfree::test {
+
+struct CommandResult {
+  int code;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline CommandResult run_command(const std::string& exe, const std::string& args, bool headless,
+                                 const std::string& env = "") {
+  static int counter = 0;
+  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const std::string out = ::testing::TempDir() + "/invfree_out_" + tag;
+  const std::string err = ::testing::TempDir() + "/invfree_err_" + tag;
+  std::string cmd = headless      ? "env -u DISPLAY -u WAYLAND_DISPLAY " + env + " "
+                    : env.empty() ? ""
+                                  : "env " + env + " ";
+  cmd += exe + " " + args + " >" + out + " 2>" + err + (headless ? " </dev/null" : "");
+  const int status = std::system(cmd.c_str());
+  CommandResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+}  // namespace invfree::test
