@@ -65,7 +65,8 @@ std::string parse_sizes(const std::string& text, std::vector<int>& sizes) {
       used = 0;
     }
     if (item.empty() || used != item.size() || v < 1 || v > kMaxSegments)
-      return "--sizes: \"" + item + "\" is not an n_seg between 1 and " + std::to_string(kMaxSegments);
+      return "--sizes: \"" + item + "\" is not an n_seg between 1 and " +
+             std::to_string(kMaxSegments);
     sizes.push_back(static_cast<int>(v));
   }
   if (sizes.empty()) return "--sizes: expected a comma-separated list of n_seg, e.g. 4,8,16";
@@ -73,7 +74,8 @@ std::string parse_sizes(const std::string& text, std::vector<int>& sizes) {
 }
 
 // Runs `steps` steps of `scene` at n_seg; false (and *error) when a step fails or on Ctrl-C.
-bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::string* error, int* code) {
+bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::string* error,
+              int* code) {
   SceneDef scene = base;
   scene.n_seg = n_seg;
   if (auto e = validate_scene(scene); !e.empty()) {
@@ -87,7 +89,8 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
   row.nodes = sim.mesh.node_count();
   row.triangles = sim.mesh.triangle_count();
   row.dofs = 2 * row.nodes + (scene.has_ceiling ? 1 : 0);
-  row.solver = scene.integrator == Integrator::ImplicitEuler ? sim.workspace.solver.backend_name() : "explicit";
+  row.solver = scene.integrator == Integrator::ImplicitEuler ? sim.workspace.solver.backend_name()
+                                                             : "explicit";
   std::vector<double> ms;
   ms.reserve(steps);
   long newton = 0, pcg = 0, factorizations = 0;
@@ -121,7 +124,8 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     std::vector<double> sorted = ms;
     std::nth_element(sorted.begin(), sorted.begin() + steps / 2, sorted.end());
     double median = sorted[steps / 2];
-    if (steps % 2 == 0) median = 0.5 * (median + *std::max_element(sorted.begin(), sorted.begin() + steps / 2));
+    if (steps % 2 == 0)
+      median = 0.5 * (median + *std::max_element(sorted.begin(), sorted.begin() + steps / 2));
     const double inv = 1.0 / steps;
     row.mean_ms = total * inv;
     row.median_ms = median;
@@ -132,7 +136,8 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     row.factor *= inv;
     row.solve *= inv;
     row.line_search *= inv;
-    row.other = std::max(0.0, row.mean_ms - row.assembly - row.factor - row.solve - row.line_search);
+    row.other =
+        std::max(0.0, row.mean_ms - row.assembly - row.factor - row.solve - row.line_search);
   }
   return *code == exit_code::kOk;
 }
@@ -218,7 +223,8 @@ Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bo
         fitted.y.push_back(std::exp(intercept + slope * std::log(r.dofs)));
       }
     spec.series.push_back(fitted);
-    spec.notes.push_back("fitted slope " + fmt(slope, 3) + " over n_seg >= " + std::to_string(from_n));
+    spec.notes.push_back("fitted slope " + fmt(slope, 3) +
+                         " over n_seg >= " + std::to_string(from_n));
   }
   if (reference) {
     Series python{"reference Python demo (median)", {}, {}, Rgb{0.45f, 0.45f, 0.45f}};
@@ -237,8 +243,8 @@ Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bo
   spec.series.push_back(linear);
   spec.series.push_back(search);
   if (!rows.empty()) {
-    spec.notes.push_back("solver: " + rows.back().solver + ", " + std::to_string(thread_count()) + " threads, " +
-                         std::to_string(rows.back().steps) + " steps per size");
+    spec.notes.push_back("solver: " + rows.back().solver + ", " + std::to_string(thread_count()) +
+                         " threads, " + std::to_string(rows.back().steps) + " steps per size");
   }
   return render_chart(spec);
 }
@@ -246,7 +252,8 @@ Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bo
 // The largest n_seg in (lo, hi) whose median step fits in `budget_ms`, knowing lo fits
 // and hi does not; each candidate runs as many steps as the sweep (a shorter run would
 // see only the cheap falling phase).
-int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_ms, std::string* error, int* code) {
+int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_ms,
+               std::string* error, int* code) {
   while (hi - lo > 1) {
     const int mid = lo + (hi - lo) / 2;
     BenchRow row;
@@ -267,15 +274,17 @@ int run_bench(const BenchOptions& opt) {
   for (int n : sizes) {
     SceneDef s = *scene;
     s.n_seg = n;
-    if (auto e = validate_scene(s); !e.empty()) return fail(exit_code::kBadInput, "n_seg " + std::to_string(n) + ": " + e);
+    if (auto e = validate_scene(s); !e.empty())
+      return fail(exit_code::kBadInput, "n_seg " + std::to_string(n) + ": " + e);
   }
   if (auto e = prepare_output_directory(opt.out_dir, false, false); !e.empty())
     return fail(exit_code::kOutputFailed, e);
   if (opt.threads > 0) set_thread_count(opt.threads);
   install_interrupt_handler();
 
-  std::printf("%-6s %8s %10s %6s %10s %10s %7s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs", "triangles", "steps",
-              "median_ms", "mean_ms", "newton", "assembly", "factor", "solve", "search", "pcg", "solver");
+  std::printf("%-6s %8s %10s %6s %10s %10s %7s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
+              "triangles", "steps", "median_ms", "mean_ms", "newton", "assembly", "factor", "solve",
+              "search", "pcg", "solver");
   const bool reference = is_reference_scene(*scene);
   std::vector<BenchRow> rows;
   int code = exit_code::kOk;
@@ -289,9 +298,10 @@ int run_bench(const BenchOptions& opt) {
     for (int k = 0; k < 3; ++k)
       if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
         speedup = "  " + fmt(kReferenceMs[k] / row.median_ms, 4) + "x the reference";
-    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n", row.n_seg, row.dofs,
-                row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton, row.assembly, row.factor,
-                row.solve, row.line_search, row.pcg, row.solver.c_str(), speedup.c_str());
+    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n",
+                row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms,
+                row.newton, row.assembly, row.factor, row.solve, row.line_search, row.pcg,
+                row.solver.c_str(), speedup.c_str());
     std::fflush(stdout);
     if (!ok) break;
   }
@@ -299,7 +309,8 @@ int run_bench(const BenchOptions& opt) {
   if (!rows.empty()) {
     if (auto e = write_file_atomically(opt.out_dir + "/bench.csv", csv_text(rows)); !e.empty())
       return fail(exit_code::kOutputFailed, e);
-    if (auto e = write_png(opt.out_dir + "/bench.png", chart(rows, scene->name, is_reference_scene(*scene)));
+    if (auto e = write_png(opt.out_dir + "/bench.png",
+                           chart(rows, scene->name, is_reference_scene(*scene)));
         !e.empty())
       return fail(exit_code::kOutputFailed, e);
     double slope = 0, intercept = 0;
@@ -314,19 +325,24 @@ int run_bench(const BenchOptions& opt) {
     const double budget = 1000.0 / opt.fps;
     int lo = 0, hi = 0;
     for (const auto& r : rows) {
-      if (r.median_ms <= budget) lo = std::max(lo, r.n_seg);
-      else if (hi == 0 || r.n_seg < hi) hi = r.n_seg;
+      if (r.median_ms <= budget)
+        lo = std::max(lo, r.n_seg);
+      else if (hi == 0 || r.n_seg < hi)
+        hi = r.n_seg;
     }
     if (lo == 0) {
       std::printf("no size ran within %.1f ms per step (%.0f fps)\n", budget, opt.fps);
     } else if (hi == 0 || hi <= lo) {
-      std::printf("largest n_seg at %.0f fps: at least %d (every size ran within %.1f ms per step)\n", opt.fps,
-                  lo, budget);
+      std::printf(
+          "largest n_seg at %.0f fps: at least %d (every size ran within %.1f ms per step)\n",
+          opt.fps, lo, budget);
     } else {
-      std::printf("bisecting n_seg in (%d, %d) for %.1f ms per step (%.0f fps):\n", lo, hi, budget, opt.fps);
+      std::printf("bisecting n_seg in (%d, %d) for %.1f ms per step (%.0f fps):\n", lo, hi, budget,
+                  opt.fps);
       const int best = bisect_fps(*scene, lo, hi, opt.steps, budget, &error, &code);
       if (best < 0) return fail(code, error);
-      std::printf("largest n_seg at %.0f fps (median step within %.1f ms): %d\n", opt.fps, budget, best);
+      std::printf("largest n_seg at %.0f fps (median step within %.1f ms): %d\n", opt.fps, budget,
+                  best);
     }
   }
   return exit_code::kOk;
@@ -340,14 +356,16 @@ void register_bench_command(CLI::App& app, int& exit_code) {
       "bench", "time a scene at several mesh sizes; write bench.csv and a log-log chart bench.png");
   opt->scene.add_to(cmd);
   cmd->add_option("--sizes", opt->sizes, "comma-separated n_seg values")->capture_default_str();
-  cmd->add_option("--steps", opt->steps, "time steps per size (the whole run of the scene by default)")
+  cmd->add_option("--steps", opt->steps,
+                  "time steps per size (the whole run of the scene by default)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--out", opt->out_dir, "output directory for bench.csv and bench.png")
       ->capture_default_str()
       ->type_name("DIR")
       ->check(non_empty_path());
-  cmd->add_option("--threads", opt->threads, "worker threads (default: every core)")->check(CLI::Range(1, 256));
+  cmd->add_option("--threads", opt->threads, "worker threads (default: every core)")
+      ->check(CLI::Range(1, 256));
   cmd->add_option("--fps", opt->fps,
                   "then find the largest n_seg whose median step fits in one frame at this rate")
       ->check(CLI::Range(1.0, 10000.0));

@@ -9,7 +9,9 @@ namespace {
 // thing a signal handler may portably touch.
 volatile std::sig_atomic_t g_signal = 0;
 
-extern "C" void on_interrupt(int sig) { g_signal = sig; }
+extern "C" void on_interrupt(int sig) {
+  g_signal = sig;
+}
 }  // namespace
 
 void install_interrupt_handler() {
@@ -26,8 +28,12 @@ void install_interrupt_handler() {
   std::signal(SIGXFSZ, SIG_IGN);
 }
 
-bool interrupted() { return g_signal != 0; }
+bool interrupted() {
+  return g_signal != 0;
+}
 
-int interrupt_signal() { return static_cast<int>(g_signal); }
+int interrupt_signal() {
+  return static_cast<int>(g_signal);
+}
 
 }  // namespace invfree

@@ -65,8 +65,10 @@ int build_scenes(const LiveCommandOptions& opt, live::LiveOptions* out) {
 int run_live_command(LiveCommandOptions& opt) {
   int w = 0, h = 0;
   char tail = 0;
-  if (std::sscanf(opt.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 320 || h < 240 || w > 8192 || h > 8192) {
-    std::fprintf(stderr, "invfree: --size %s: expected WIDTHxHEIGHT between 320x240 and 8192x8192\n",
+  if (std::sscanf(opt.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 320 || h < 240 ||
+      w > 8192 || h > 8192) {
+    std::fprintf(stderr,
+                 "invfree: --size %s: expected WIDTHxHEIGHT between 320x240 and 8192x8192\n",
                  opt.size.c_str());
     return exit_code::kBadInput;
   }
@@ -83,21 +85,26 @@ int run_live_command(LiveCommandOptions& opt) {
 
 void register_live_command(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<LiveCommandOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "live", "interactive window: the running simulation with sliders for mu and lambda (the default command "
-              "when a display is available)");
+  CLI::App* cmd = app.add_subcommand("live",
+                                     "interactive window: the running simulation with sliders for "
+                                     "mu and lambda (the default command "
+                                     "when a display is available)");
   std::string names;
   for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
-  cmd->add_option("--scene", opt->scene, "scene to start with: built-in (" + names + ") or a TOML scene file")
+  cmd->add_option("--scene", opt->scene,
+                  "scene to start with: built-in (" + names + ") or a TOML scene file")
       ->capture_default_str();
   cmd->add_option("scene_files", opt->scene_files, "more TOML scene files for the scene picker")
       ->type_name("FILE ...");
-  cmd->add_option("--set", opt->overrides, "override a value of the starting scene, e.g. --set material.E=1e4 (repeatable)")
+  cmd->add_option("--set", opt->overrides,
+                  "override a value of the starting scene, e.g. --set material.E=1e4 (repeatable)")
       ->type_name("SECTION.KEY=VALUE");
-  cmd->add_option("--frames", opt->live.frames, "run this many frames, then exit (0: until the window is closed)")
+  cmd->add_option("--frames", opt->live.frames,
+                  "run this many frames, then exit (0: until the window is closed)")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000000));
-  cmd->add_option("--screenshot", opt->live.screenshot_file, "save the last frame (window as shown) as a PNG")
+  cmd->add_option("--screenshot", opt->live.screenshot_file,
+                  "save the last frame (window as shown) as a PNG")
       ->type_name("FILE")
       ->check(non_empty_path());
   cmd->add_option("--screenshot-dir", opt->live.screenshot_dir,
@@ -106,18 +113,21 @@ void register_live_command(CLI::App& app, int& exit_code) {
       ->type_name("DIR")
       ->check(non_empty_path());
   cmd->add_option("--record", opt->live.record_dir,
-                  "record from the start: DIR/frame_000000.png, ... (as `invfree render`); DIR must be empty")
+                  "record from the start: DIR/frame_000000.png, ... (as `invfree render`); DIR "
+                  "must be empty")
       ->type_name("DIR")
       ->check(non_empty_path());
-  cmd->add_flag("--bench", opt->live.bench, "print frames per second (with the simulation running) at the end");
+  cmd->add_flag("--bench", opt->live.bench,
+                "print frames per second (with the simulation running) at the end");
   cmd->add_flag("--paused", opt->live.paused, "start paused");
   cmd->add_flag("--no-panel", opt->live.hide_panel, "start with the panel hidden (Tab shows it)");
   cmd->add_option("--size", opt->size, "window size")->capture_default_str()->type_name("WxH");
   cmd->add_option("--steps-per-frame", opt->live.steps_per_frame, "time steps per displayed frame")
       ->capture_default_str()
       ->check(CLI::Range(1, 10));
-  cmd->add_option("--max-n-seg", opt->live.max_segments,
-                  "the n_seg slider's maximum (default: the largest mesh measured at >= 30 frames/s)")
+  cmd->add_option(
+         "--max-n-seg", opt->live.max_segments,
+         "the n_seg slider's maximum (default: the largest mesh measured at >= 30 frames/s)")
       ->capture_default_str()
       ->check(CLI::Range(2, 1024));
   cmd->footer("\n" + live::help_text() +
@@ -127,9 +137,11 @@ void register_live_command(CLI::App& app, int& exit_code) {
 
 int run_default_command() {
   if (!live::display_available()) {
-    std::fprintf(stderr,
-                 "invfree: a subcommand is required when there is no display (plain `invfree` opens the live "
-                 "window only on one); try `invfree simulate` or `invfree render` (see invfree --help)\n");
+    std::fprintf(
+        stderr,
+        "invfree: a subcommand is required when there is no display (plain `invfree` opens the "
+        "live "
+        "window only on one); try `invfree simulate` or `invfree render` (see invfree --help)\n");
     return exit_code::kBadInput;
   }
   LiveCommandOptions opt;

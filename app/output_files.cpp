@@ -76,7 +76,9 @@ std::string write_file_atomically(const std::string& path, std::string_view data
   return "";
 }
 
-AtomicFileWriter::~AtomicFileWriter() { abandon(); }
+AtomicFileWriter::~AtomicFileWriter() {
+  abandon();
+}
 
 void AtomicFileWriter::abandon() {
   if (fd_ < 0) return;

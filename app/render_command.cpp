@@ -16,11 +16,11 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
-#include <condition_variable>
-#include <deque>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <filesystem>
 #include <mutex>
 #include <regex>
@@ -82,7 +82,8 @@ std::string find_on_path(const std::string& program) {
     const size_t end = std::min(dirs.find(':', start), dirs.size());
     const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
     const std::string candidate = dir + "/" + program;
-    if (::access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate)) return candidate;
+    if (::access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate))
+      return candidate;
     start = end + 1;
   }
   return "";
@@ -102,11 +103,26 @@ std::string make_movie(const std::string& ffmpeg, const std::string& dir, double
   const std::string final_path = dir + "/movie.mp4";
   char rate[32];
   std::snprintf(rate, sizeof rate, "%.6g", fps);
-  std::vector<std::string> args = {ffmpeg, "-nostdin", "-y", "-loglevel", "error", "-framerate", rate,
-                                   "-i", dir + "/frame_%06d.png",
-                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white",
-                                   "-c:v", "libx264", "-pix_fmt", "yuv420p", "-movflags", "+faststart",
-                                   "-f", "mp4", tmp};
+  std::vector<std::string> args = {ffmpeg,
+                                   "-nostdin",
+                                   "-y",
+                                   "-loglevel",
+                                   "error",
+                                   "-framerate",
+                                   rate,
+                                   "-i",
+                                   dir + "/frame_%06d.png",
+                                   "-vf",
+                                   "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white",
+                                   "-c:v",
+                                   "libx264",
+                                   "-pix_fmt",
+                                   "yuv420p",
+                                   "-movflags",
+                                   "+faststart",
+                                   "-f",
+                                   "mp4",
+                                   tmp};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -211,7 +227,8 @@ class Progress {
     if (!tty_ || (elapsed - last_ < 0.1 && done < total_)) return;
     last_ = elapsed;
     const double eta = done > 0 ? elapsed / done * (total_ - done) : 0.0;
-    std::fprintf(stderr, "\r\033[Krender: frame %d/%d  %.1f s elapsed  ETA %.1f s", done, total_, elapsed, eta);
+    std::fprintf(stderr, "\r\033[Krender: frame %d/%d  %.1f s elapsed  ETA %.1f s", done, total_,
+                 elapsed, eta);
     std::fflush(stderr);
     shown_ = true;
   }
@@ -233,13 +250,15 @@ int run_render(const RenderOptions& opt) {
   if (!scene) return fail(exit_code::kBadInput, error);
   int width = 0, height = 0;
   if (!parse_size(opt.size, &width, &height))
-    return fail(exit_code::kBadInput, "--size: expected WIDTHxHEIGHT with each in 64..8192, got \"" + opt.size + "\"");
+    return fail(exit_code::kBadInput,
+                "--size: expected WIDTHxHEIGHT with each in 64..8192, got \"" + opt.size + "\"");
   std::string ffmpeg;
   if (opt.mp4) {
     ffmpeg = find_on_path("ffmpeg");
     if (ffmpeg.empty())
       return fail(exit_code::kBadInput,
-                  "--mp4 needs ffmpeg, which is not on PATH (install it: sudo apt-get install ffmpeg; or leave out "
+                  "--mp4 needs ffmpeg, which is not on PATH (install it: sudo apt-get install "
+                  "ffmpeg; or leave out "
                   "--mp4 to write the PNG frames only)");
   }
   const double fps = opt.fps > 0.0 ? opt.fps : 1.0 / (scene->h * opt.steps_per_frame);
@@ -256,7 +275,9 @@ int run_render(const RenderOptions& opt) {
   install_interrupt_handler();
 
   const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   Simulation sim = make_simulation(*scene);
   render::FrameWriter writer(opt.writer_threads, opt.png_level);
   render::DrawOptions draw_options;
@@ -275,7 +296,8 @@ int run_render(const RenderOptions& opt) {
       renderer->draw(state, draw_options);
       std::vector<std::uint8_t> pixels = writer.take_buffer();
       renderer->read_pixels(&pixels);
-      if (!writer.submit(opt.out + "/" + frame_name(frames), width, height, std::move(pixels))) break;
+      if (!writer.submit(opt.out + "/" + frame_name(frames), width, height, std::move(pixels)))
+        break;
       ++frames;
       progress.update(frames, elapsed());
     }
@@ -288,16 +310,20 @@ int run_render(const RenderOptions& opt) {
 
   std::string movie;
   if (opt.mp4 && failure.status == StepStatus::Ok && !interrupted() && frames > 0) {
-    if (auto e = make_movie(ffmpeg, opt.out, fps); !e.empty()) return fail(exit_code::kOutputFailed, e);
+    if (auto e = make_movie(ffmpeg, opt.out, fps); !e.empty())
+      return fail(exit_code::kOutputFailed, e);
     movie = ", " + opt.out + "/movie.mp4";
   }
-  std::printf("%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, det F in [%.4f, %.4f]\n",
-              sim.scene.name.c_str(), frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
-              frame_name(std::max(frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time, seconds,
-              seconds > 0 ? frames / seconds : 0.0, det_lo, det_hi);
+  std::printf(
+      "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, det F "
+      "in [%.4f, %.4f]\n",
+      sim.scene.name.c_str(), frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
+      frame_name(std::max(frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time, seconds,
+      seconds > 0 ? frames / seconds : 0.0, det_lo, det_hi);
   if (failure.status != StepStatus::Ok)
-    return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) + " failed: " +
-                                           step_status_name(failure.status) + ": " + failure.message);
+    return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) +
+                                           " failed: " + step_status_name(failure.status) + ": " +
+                                           failure.message);
   if (interrupted())
     return fail(exit_code::kInterrupted, "interrupted after frame " + std::to_string(frames) +
                                              "; the frames written are complete");
@@ -308,9 +334,9 @@ int run_render(const RenderOptions& opt) {
 
 void register_render_command(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<RenderOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "render",
-      "render a scene offscreen (no display needed) to DIR/frame_000000.png ... (frame 0: the initial state)");
+  CLI::App* cmd = app.add_subcommand("render",
+                                     "render a scene offscreen (no display needed) to "
+                                     "DIR/frame_000000.png ... (frame 0: the initial state)");
   opt->scene.add_to(cmd);
   cmd->add_option("--frames", opt->frames, "number of frames, the initial state included")
       ->capture_default_str()
@@ -322,15 +348,20 @@ void register_render_command(CLI::App& app, int& exit_code) {
       ->type_name("DIR")
       ->capture_default_str()
       ->check(non_empty_path());
-  cmd->add_option("--size", opt->size, "frame size in pixels")->type_name("WxH")->capture_default_str();
+  cmd->add_option("--size", opt->size, "frame size in pixels")
+      ->type_name("WxH")
+      ->capture_default_str();
   cmd->add_flag("--no-edges", opt->no_edges, "do not draw the triangle edges");
   cmd->add_flag("--mp4", opt->mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");
-  cmd->add_option("--fps", opt->fps, "frame rate of movie.mp4 (default: real time, 1 / (h * steps-per-frame))")
+  cmd->add_option("--fps", opt->fps,
+                  "frame rate of movie.mp4 (default: real time, 1 / (h * steps-per-frame))")
       ->check(CLI::Range(0.1, 1000.0));
-  cmd->add_option("--png-level", opt->png_level, "PNG compression level (stb_image_write; 1 is fastest)")
+  cmd->add_option("--png-level", opt->png_level,
+                  "PNG compression level (stb_image_write; 1 is fastest)")
       ->capture_default_str()
       ->check(CLI::Range(1, 9));
-  cmd->add_flag("--force", opt->force, "write into a non-empty output directory (overwriting frames)");
+  cmd->add_flag("--force", opt->force,
+                "write into a non-empty output directory (overwriting frames)");
   cmd->callback([opt, &exit_code] { exit_code = run_render(*opt); });
 }
 

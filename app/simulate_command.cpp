@@ -31,7 +31,8 @@ std::string obj_text(const Simulation& sim) {
   o.precision(17);
   for (int i = 0; i < sim.mesh.node_count(); ++i)
     o << "v " << sim.x[2 * i] << " " << sim.x[2 * i + 1] << " 0.0\n";
-  for (const auto& t : sim.mesh.triangles) o << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  for (const auto& t : sim.mesh.triangles)
+    o << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
   return o.str();
 }
 
@@ -47,7 +48,8 @@ int run_simulate(const SimulateOptions& opt) {
   // Check every output before the first step: a long run must not fail at its end.
   AtomicFileWriter csv_file;
   if (!opt.csv_path.empty()) {
-    if (auto e = check_output_file(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
+    if (auto e = check_output_file(opt.csv_path); !e.empty())
+      return fail(exit_code::kOutputFailed, e);
     if (auto e = csv_file.open(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
   if (!opt.obj_dir.empty()) {
@@ -60,7 +62,8 @@ int run_simulate(const SimulateOptions& opt) {
   Simulation sim = make_simulation(*scene);
   auto write_obj = [&]() -> std::string {
     if (opt.obj_dir.empty()) return "";
-    return write_file_atomically(opt.obj_dir + "/" + std::to_string(sim.step_count) + ".obj", obj_text(sim));
+    return write_file_atomically(opt.obj_dir + "/" + std::to_string(sim.step_count) + ".obj",
+                                 obj_text(sim));
   };
   if (auto e = write_obj(); !e.empty()) return fail(exit_code::kOutputFailed, e);
 
@@ -89,9 +92,9 @@ int run_simulate(const SimulateOptions& opt) {
     const auto det = triangle_det_f(sim);
     const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
     const double gap = min_plane_gap(sim);
-    csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual << ","
-        << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
-        << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
+    csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual
+        << "," << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0)
+        << "," << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
     if (auto e = flush_csv(false); !e.empty()) return fail(exit_code::kOutputFailed, e);
     if (auto e = write_obj(); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
@@ -103,16 +106,19 @@ int run_simulate(const SimulateOptions& opt) {
   const long done = sim.step_count;
   const auto det = triangle_det_f(sim);
   const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
-  std::printf("%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, det F in [%.4f, %.4f]\n",
-              sim.scene.name.c_str(), done, sim.time,
-              done ? double(total_iterations) / done : 0.0, done ? total_ms / done : 0.0, *lo, *hi);
+  std::printf(
+      "%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, det F in [%.4f, "
+      "%.4f]\n",
+      sim.scene.name.c_str(), done, sim.time, done ? double(total_iterations) / done : 0.0,
+      done ? total_ms / done : 0.0, *lo, *hi);
   std::fflush(stdout);
   if (failure.status != StepStatus::Ok) {
     char t[32];
     std::snprintf(t, sizeof t, "%.4g", sim.time + sim.scene.h);
-    return fail(exit_code::kRunFailed, "step " + std::to_string(done + 1) + " failed: " +
-                                           step_status_name(failure.status) + ": " + failure.message +
-                                           " (t = " + t + " s); outputs hold steps 0.." + std::to_string(done));
+    return fail(exit_code::kRunFailed, "step " + std::to_string(done + 1) +
+                                           " failed: " + step_status_name(failure.status) + ": " +
+                                           failure.message + " (t = " + t +
+                                           " s); outputs hold steps 0.." + std::to_string(done));
   }
   if (interrupted())
     return fail(exit_code::kInterrupted, "interrupted after step " + std::to_string(done) +
@@ -124,13 +130,15 @@ int run_simulate(const SimulateOptions& opt) {
 
 void register_simulate_command(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<SimulateOptions>();
-  CLI::App* cmd = app.add_subcommand("simulate", "step a scene without drawing; write CSV and OBJ files");
+  CLI::App* cmd =
+      app.add_subcommand("simulate", "step a scene without drawing; write CSV and OBJ files");
   opt->scene.add_to(cmd);
   cmd->add_option("--steps", opt->steps, "number of time steps (0 to 100000000)")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000000));
-  cmd->add_option("--obj", opt->obj_dir,
-                  "write DIR/<k>.obj after k steps (k = 0 is the initial mesh); DIR must be empty or new")
+  cmd->add_option(
+         "--obj", opt->obj_dir,
+         "write DIR/<k>.obj after k steps (k = 0 is the initial mesh); DIR must be empty or new")
       ->type_name("DIR")
       ->check(non_empty_path());
   cmd->add_option("--csv", opt->csv_path,

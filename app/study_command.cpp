@@ -44,23 +44,31 @@ int run_study_command(const StudyCommandOptions& opt) {
 
   StudyOptions options;
   options.quick = opt.quick;
-  if (!opt.quiet) options.progress = [](const std::string& line) { std::fprintf(stderr, "study: %s\n", line.c_str()); };
+  if (!opt.quiet)
+    options.progress = [](const std::string& line) {
+      std::fprintf(stderr, "study: %s\n", line.c_str());
+    };
   options.stop = [] { return interrupted(); };
   const StudyResult result = run_study(*scene, options);
   if (result.stopped) return fail(exit_code::kInterrupted, "study interrupted; nothing written");
 
   if (auto e = write_file_atomically(csv_path, study_csv(result)); !e.empty())
     return fail(exit_code::kOutputFailed, e);
-  if (auto e = write_png(png_path, study_chart(result)); !e.empty()) return fail(exit_code::kOutputFailed, e);
-  if (auto e = write_png(sweeps_path, sweeps_chart(result)); !e.empty()) return fail(exit_code::kOutputFailed, e);
+  if (auto e = write_png(png_path, study_chart(result)); !e.empty())
+    return fail(exit_code::kOutputFailed, e);
+  if (auto e = write_png(sweeps_path, sweeps_chart(result)); !e.empty())
+    return fail(exit_code::kOutputFailed, e);
 
   int failed = 0;
   for (const StudyRow& r : result.rows) failed += r.failure != "ok";
-  std::printf("study of %s: %zu runs (%d failed), implicit Euler error slope %.2f, %.1f s in the solver; wrote %s, "
-              "%s, %s\n",
-              scene->name.c_str(), result.rows.size(), failed, result.lecture_slope, result.total_wall_s,
-              csv_path.c_str(), png_path.c_str(), sweeps_path.c_str());
-  for (const std::string& f : result.reference_failures) std::fprintf(stderr, "invfree: warning: %s\n", f.c_str());
+  std::printf(
+      "study of %s: %zu runs (%d failed), implicit Euler error slope %.2f, %.1f s in the solver; "
+      "wrote %s, "
+      "%s, %s\n",
+      scene->name.c_str(), result.rows.size(), failed, result.lecture_slope, result.total_wall_s,
+      csv_path.c_str(), png_path.c_str(), sweeps_path.c_str());
+  for (const std::string& f : result.reference_failures)
+    std::fprintf(stderr, "invfree: warning: %s\n", f.c_str());
   return exit_code::kOk;
 }
 
@@ -69,8 +77,9 @@ int run_study_command(const StudyCommandOptions& opt) {
 void register_study_command(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<StudyCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "study", "speed against accuracy: sweep h, Newton tol and mesh resolution for every method; write "
-               "study.csv, study.png, study-sweeps.png");
+      "study",
+      "speed against accuracy: sweep h, Newton tol and mesh resolution for every method; write "
+      "study.csv, study.png, study-sweeps.png");
   opt->scene.add_to(cmd);
   cmd->add_option("--out", opt->out, "directory for study.csv, study.png and study-sweeps.png")
       ->type_name("DIR")

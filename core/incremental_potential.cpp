@@ -12,7 +12,9 @@ namespace invfree {
 
 namespace {
 
-Vec2 node(const VecX& x, int i) { return x.segment<2>(2 * i); }
+Vec2 node(const VecX& x, int i) {
+  return x.segment<2>(2 * i);
+}
 
 Mat2 triangle_f(const Mesh& mesh, const VecX& x, int t) {
   const auto& tri = mesh.triangles[t];
@@ -63,10 +65,13 @@ constexpr int kTriangleBlock = 4096;      // energy: triangles per block (at lea
 constexpr int kNodeBlock = 8192;          // nodes per block (at least)
 constexpr int kParallelTriangles = 2048;  // assembly: below this, colours run inline
 
-Vec2 node_at(const double* x, int i) { return {x[2 * i], x[2 * i + 1]}; }
+Vec2 node_at(const double* x, int i) {
+  return {x[2 * i], x[2 * i + 1]};
+}
 
 template <class M>
-double triangle_energy_range(const Mesh& mesh, const Lame& lame, const double* x, int begin, int end) {
+double triangle_energy_range(const Mesh& mesh, const Lame& lame, const double* x, int begin,
+                             int end) {
   double e = 0.0;
   for (int t = begin; t < end; ++t) {
     const auto& tri = mesh.triangles[t];
@@ -86,10 +91,12 @@ double node_energy_range(const StepProblem& p, const double* z, int begin, int e
   for (int i = begin; i < end; ++i) {
     const double dx = z[2 * i] - p.x_tilde[2 * i], dy = z[2 * i + 1] - p.x_tilde[2 * i + 1];
     double potential = 0.0;
-    if (p.gravity_on) potential -= mass[i] * (p.gravity.x() * z[2 * i] + p.gravity.y() * z[2 * i + 1]);
+    if (p.gravity_on)
+      potential -= mass[i] * (p.gravity.x() * z[2 * i] + p.gravity.y() * z[2 * i + 1]);
     if (p.ground_on) potential += barrier_value(z[2 * i + 1] - p.ground_y, p.barrier);
     if (p.friction_on && p.friction_weight[i] > 0.0)
-      potential += friction_value(z[2 * i] - p.x_start[2 * i], p.friction_weight[i], p.friction_eps_u);
+      potential +=
+          friction_value(z[2 * i] - p.x_start[2 * i], p.friction_weight[i], p.friction_eps_u);
     if (p.ceiling_on) potential += barrier_value(z[c] - z[2 * i + 1], p.barrier);
     e += 0.5 * mass[i] * (dx * dx + dy * dy) + h2 * potential;
   }
@@ -109,7 +116,8 @@ double ip_energy(const StepProblem& p, const VecX& z) {
     using M = decltype(m);
     auto block = [&](int task) {
       if (task < tri.blocks) {
-        partial[task] = triangle_energy_range<M>(*p.mesh, p.lame, zp, tri.begin(task), tri.end(task, nt));
+        partial[task] =
+            triangle_energy_range<M>(*p.mesh, p.lame, zp, tri.begin(task), tri.end(task, nt));
       } else {
         const int b = task - tri.blocks;
         partial[task] = node_energy_range(p, zp, nodes.begin(b), nodes.end(b, n));
@@ -206,8 +214,10 @@ void add_triangle_chunk(const StepProblem& p, const double* z, int chunk, double
   for (int t = begin; t < end; ++t) {
     const auto& tri = mesh.triangles[t];
     const Mat2& IB = mesh.rest_shape_inverse[t];
-    const Mat2 F = deformation_gradient(node_at(z, tri[0]), node_at(z, tri[1]), node_at(z, tri[2]), IB);
-    TriangleElasticity<M>::gradient_hessian(F, IB, h2 * mesh.rest_area[t], p.lame, p.projection, gt, ht);
+    const Mat2 F =
+        deformation_gradient(node_at(z, tri[0]), node_at(z, tri[1]), node_at(z, tri[2]), IB);
+    TriangleElasticity<M>::gradient_hessian(F, IB, h2 * mesh.rest_area[t], p.lame, p.projection, gt,
+                                            ht);
     for (int a = 0; a < 3; ++a) {
       g[2 * tri[a]] += gt[2 * a];
       g[2 * tri[a] + 1] += gt[2 * a + 1];
@@ -232,9 +242,8 @@ void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient, Sp
   const int nnz = static_cast<int>(hess.matrix.nonZeros());
   const BlockSplit zero = split_blocks(nnz, 1 << 18, kMaxBlocks);
   double* values = hess.values();
-  pool.run(zero.blocks, [&](int b) {
-    std::fill(values + zero.begin(b), values + zero.end(b, nnz), 0.0);
-  });
+  pool.run(zero.blocks,
+           [&](int b) { std::fill(values + zero.begin(b), values + zero.end(b, nnz), 0.0); });
   const BlockSplit nodes = split_blocks(n, kNodeBlock, kMaxBlocks);
   double ceiling_g[kMaxBlocks], ceiling_h[kMaxBlocks];
   pool.run(nodes.blocks, [&](int b) {
@@ -246,7 +255,9 @@ void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient, Sp
     using M = decltype(m);
     for (int colour = 0; colour < hess.colour_count(); ++colour) {
       const int first = hess.colour_begin[colour], count = hess.colour_begin[colour + 1] - first;
-      auto chunk = [&](int k) { add_triangle_chunk<M>(p, zp, hess.chunk_order[first + k], h2, g, hess); };
+      auto chunk = [&](int k) {
+        add_triangle_chunk<M>(p, zp, hess.chunk_order[first + k], h2, g, hess);
+      };
       if (parallel) {
         pool.run(count, chunk);
       } else {

@@ -58,7 +58,8 @@ struct StepProblem {
 };
 
 double ip_energy(const StepProblem& p, const VecX& z);
-void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient, SparseHessian& hessian);
+void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient,
+                         SparseHessian& hessian);
 
 // Elastic energy sum_t area_t Psi(F_t) alone (also used by explicit integration and tests).
 double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x);

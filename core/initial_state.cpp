@@ -66,7 +66,8 @@ std::string check_mesh_fits_in_memory(int n_seg) {
   const double needed = estimated_memory_bytes(n_seg);
   if (needed <= 0.8 * physical) return "";
   char buf[160];
-  std::snprintf(buf, sizeof buf, "%d would need about %.1f GiB, more than this machine's %.1f GiB of memory allows",
+  std::snprintf(buf, sizeof buf,
+                "%d would need about %.1f GiB, more than this machine's %.1f GiB of memory allows",
                 n_seg, needed / double(1 << 30), physical / double(1 << 30));
   return buf;
 }

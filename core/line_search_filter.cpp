@@ -8,7 +8,9 @@ namespace invfree {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 }  // namespace
 
 double smallest_positive_root(double a, double b, double c) {
@@ -50,7 +52,8 @@ double plane_step(const PlaneFilter& planes, int node_count, const VecX& x, cons
   const int c = 2 * node_count;
   for (int i = 0; i < node_count; ++i) {
     const int y = 2 * i + 1;
-    if (planes.ground_on && p[y] < 0.0) alpha = std::min(alpha, 0.9 * (x[y] - planes.ground_y) / -p[y]);
+    if (planes.ground_on && p[y] < 0.0)
+      alpha = std::min(alpha, 0.9 * (x[y] - planes.ground_y) / -p[y]);
     if (planes.ceiling_on) {
       const double closing = p[c] - p[y];  // rate of change of the gap c - y_i
       if (closing < 0.0) alpha = std::min(alpha, 0.9 * (x[c] - x[y]) / -closing);

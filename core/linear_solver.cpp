@@ -182,7 +182,9 @@ struct LdltBackend {
     return ok;
   }
 
-  bool factorize(const SpMat& a, bool positive_definite) { return ldlt.factorize(a, positive_definite); }
+  bool factorize(const SpMat& a, bool positive_definite) {
+    return ldlt.factorize(a, positive_definite);
+  }
   void solve(const VecX& b, VecX& x) { ldlt.solve(b, x); }
 };
 
@@ -293,7 +295,8 @@ struct CholmodBackend {
     rhs.x = const_cast<double*>(b.data());
     rhs.xtype = CHOLMOD_REAL;
     rhs.dtype = CHOLMOD_DOUBLE;
-    if (!cholmod_solve2(CHOLMOD_A, factor, &rhs, nullptr, &x, nullptr, &y, &e, &common)) return false;
+    if (!cholmod_solve2(CHOLMOD_A, factor, &rhs, nullptr, &x, nullptr, &y, &e, &common))
+      return false;
     std::memcpy(out.data(), x->x, sizeof(double) * b.size());
     return true;
   }
@@ -337,11 +340,11 @@ struct LinearSolver::Impl {
   double iter_cost = 0.0;    // flops of one PCG iteration (a solve, a product, vector work)
   VecX r, z, p, hp, t;
   // Diagonal correction of the reused factor (see prepare_correction).
-  std::vector<int> diag_pos;     // position of H(i, i) in the value array
-  VecX factored_diag;            // diag(H) when the factor was computed
-  std::vector<int> changed;      // unknowns whose diagonal moved by more than 10% since
+  std::vector<int> diag_pos;  // position of H(i, i) in the value array
+  VecX factored_diag;         // diag(H) when the factor was computed
+  std::vector<int> changed;   // unknowns whose diagonal moved by more than 10% since
   std::vector<char> is_changed;
-  VecX smoother;                 // omega_i / H(i, i) on `changed`
+  VecX smoother;  // omega_i / H(i, i) on `changed`
 
   bool factorize(const SpMat& h, LinearSolveStats& stats) {
     const auto t0 = Clock::now();
@@ -546,7 +549,8 @@ bool LinearSolver::solve(const SpMat& h, const VecX& b, VecX& x, const SolveRequ
     ok = s.factorize(h, stats) && s.apply_factor(b, x);
   } else {
     // Do not spend more on PCG iterations than a fresh factorisation costs.
-    const int max_iterations = std::max(2, static_cast<int>(std::ceil(s.factor_cost / s.iter_cost)));
+    const int max_iterations =
+        std::max(2, static_cast<int>(std::ceil(s.factor_cost / s.iter_cost)));
     int outcome = 0;
     if (s.have_factor && !s.refresh) {
       const int before = stats.pcg_iterations;

@@ -2,8 +2,8 @@
 //
 // Backends (chosen once per pattern, see linear_solver_kind.h):
 //  - direct: the project's LDL^T (core/sparse_ldlt.h; AMD ordering, METIS nested
-//    dissection from 5k unknowns) or CHOLMOD's supernodal LL^T (METIS, BLAS). The symbolic analysis is done
-//    once per pattern; a factorisation is numeric only.
+//    dissection from 5k unknowns) or CHOLMOD's supernodal LL^T (METIS, BLAS). The symbolic analysis
+//    is done once per pattern; a factorisation is numeric only.
 //  - PCG preconditioned by a *reused* factorisation: H changes little from one Newton
 //    iteration (and one step) to the next, so the factor of an earlier H is an excellent
 //    preconditioner and a few conjugate-gradient iterations (one sparse product and one
@@ -55,7 +55,8 @@ struct LinearSolveStats {
 struct SolveRequest {
   double threshold = 0.0;   // Newton's |p|_inf stopping threshold (tol * h); 0: none
   double lambda_min = 0.0;  // a lower bound on H's smallest eigenvalue (> 0 for PCG)
-  double forcing = 1e-2;    // relative model decrease of the last CG step, for a direction that will not stop Newton
+  double forcing = 1e-2;  // relative model decrease of the last CG step, for a direction that will
+                          // not stop Newton
 };
 
 class LinearSolver {
@@ -67,7 +68,8 @@ class LinearSolver {
 
   // Symbolic analysis for `pattern` (full symmetric storage) and every buffer. With
   // `positive_definite` false (an exact, possibly indefinite Hessian) auto means LDL^T.
-  void setup(const Eigen::SparseMatrix<double>& pattern, LinearSolverKind kind, bool positive_definite);
+  void setup(const Eigen::SparseMatrix<double>& pattern, LinearSolverKind kind,
+             bool positive_definite);
   bool ready() const { return impl_ != nullptr; }
   LinearSolverKind requested() const { return requested_; }
   bool positive_definite() const { return positive_definite_; }
@@ -75,8 +77,8 @@ class LinearSolver {
   const char* backend_name() const;
 
   // Solves H x = b. Returns false when the factorisation breaks down or x is not finite.
-  bool solve(const Eigen::SparseMatrix<double>& H, const VecX& b, VecX& x, const SolveRequest& request,
-             LinearSolveStats& stats);
+  bool solve(const Eigen::SparseMatrix<double>& H, const VecX& b, VecX& x,
+             const SolveRequest& request, LinearSolveStats& stats);
   // Forgets the stored factorisation: the next solve factorises afresh.
   void invalidate();
 

@@ -16,10 +16,14 @@ enum class LinearSolverKind { Auto, Ldlt, Cholmod, Pcg };
 
 inline const char* linear_solver_name(LinearSolverKind k) {
   switch (k) {
-    case LinearSolverKind::Auto: return "auto";
-    case LinearSolverKind::Ldlt: return "ldlt";
-    case LinearSolverKind::Cholmod: return "cholmod";
-    case LinearSolverKind::Pcg: return "pcg";
+    case LinearSolverKind::Auto:
+      return "auto";
+    case LinearSolverKind::Ldlt:
+      return "ldlt";
+    case LinearSolverKind::Cholmod:
+      return "cholmod";
+    case LinearSolverKind::Pcg:
+      return "pcg";
   }
   return "?";
 }

@@ -13,7 +13,9 @@ void young_poisson_from_lame(const Lame& lame, double* youngs, double* poisson) 
   *youngs = mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
 }
 
-bool model_allows_inversion(Model m) { return m != Model::NeoHookean; }
+bool model_allows_inversion(Model m) {
+  return m != Model::NeoHookean;
+}
 
 namespace {
 struct ModelName {

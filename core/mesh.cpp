@@ -8,7 +8,8 @@ Mesh square_mesh(double side, int n_seg) {
   const double step = side / n_seg;
   mesh.rest.reserve(static_cast<size_t>(n) * n);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) mesh.rest.emplace_back(-0.5 * side + i * step, -0.5 * side + j * step);
+    for (int j = 0; j < n; ++j)
+      mesh.rest.emplace_back(-0.5 * side + i * step, -0.5 * side + j * step);
   mesh.triangles.reserve(2 * static_cast<size_t>(n_seg) * n_seg);
   for (int i = 0; i < n_seg; ++i) {
     for (int j = 0; j < n_seg; ++j) {

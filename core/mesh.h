@@ -18,10 +18,10 @@ enum class MassMode {
 };
 
 struct Mesh {
-  std::vector<Vec2> rest;                   // X, one per node
+  std::vector<Vec2> rest;  // X, one per node
   std::vector<std::array<int, 3>> triangles;
-  std::vector<double> rest_area;            // per triangle
-  std::vector<Mat2> rest_shape_inverse;     // per triangle: [X2-X1, X3-X1]^-1
+  std::vector<double> rest_area;         // per triangle
+  std::vector<Mat2> rest_shape_inverse;  // per triangle: [X2-X1, X3-X1]^-1
   int node_count() const { return static_cast<int>(rest.size()); }
   int triangle_count() const { return static_cast<int>(triangles.size()); }
 };

@@ -57,7 +57,8 @@ struct NeoHookean {
   }
 
   // P and dP/dF together: one determinant, one logarithm, one polar SVD.
-  static void stress_and_derivative(const Mat2& F, const Lame& m, bool project_to_psd, Mat2& P, Mat4& dPdF) {
+  static void stress_and_derivative(const Mat2& F, const Lame& m, bool project_to_psd, Mat2& P,
+                                    Mat4& dPdF) {
     const double J = determinant(F);
     const double lnJ = std::log(J);
     Mat2 inv_t;  // F^-T = cof(F) / J

@@ -52,10 +52,13 @@ void ThreadPool::work() {
     const std::uint32_t tasks = static_cast<std::uint32_t>(s >> 16) & 0xffff;
     const std::uint32_t next = static_cast<std::uint32_t>(s) & 0xffff;
     if (next >= tasks) return;
-    if (!state_.compare_exchange_weak(s, s + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
+    if (!state_.compare_exchange_weak(s, s + 1, std::memory_order_acq_rel,
+                                      std::memory_order_acquire))
+      continue;
     // The run cannot end while this claimed task is pending, so call_/ctx_ are its own.
     call_(ctx_, static_cast<int>(next));
-    if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == static_cast<int>(tasks)) done_.notify_one();
+    if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == static_cast<int>(tasks))
+      done_.notify_one();
     s = state_.load(std::memory_order_acquire);
   }
 }
@@ -63,7 +66,8 @@ void ThreadPool::work() {
 void ThreadPool::worker_loop() {
   std::uint32_t seen = 0;
   while (true) {
-    for (int i = 0; i < kSpinIterations && wake_.load(std::memory_order_acquire) == seen; ++i) cpu_relax();
+    for (int i = 0; i < kSpinIterations && wake_.load(std::memory_order_acquire) == seen; ++i)
+      cpu_relax();
     wake_.wait(seen, std::memory_order_acquire);
     seen = wake_.load(std::memory_order_acquire);
     if (stop_.load(std::memory_order_acquire)) return;
@@ -85,7 +89,8 @@ void ThreadPool::run_impl(int tasks, TaskFn call, void* ctx) {
     if (done_.load(std::memory_order_acquire) == tasks) return;
     cpu_relax();
   }
-  for (int d = done_.load(std::memory_order_acquire); d != tasks; d = done_.load(std::memory_order_acquire))
+  for (int d = done_.load(std::memory_order_acquire); d != tasks;
+       d = done_.load(std::memory_order_acquire))
     done_.wait(d, std::memory_order_acquire);
 }
 
@@ -95,7 +100,9 @@ ThreadPool& thread_pool() {
   return *g_pool;
 }
 
-int thread_count() { return thread_pool().size(); }
+int thread_count() {
+  return thread_pool().size();
+}
 
 void set_thread_count(int n) {
   std::lock_guard<std::mutex> lock(g_pool_mutex);

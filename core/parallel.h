@@ -39,7 +39,9 @@ class ThreadPool {
       return;
     }
     using F = std::remove_reference_t<Fn>;
-    run_impl(tasks, [](void* ctx, int t) { (*static_cast<F*>(ctx))(t); }, const_cast<void*>(static_cast<const void*>(&fn)));
+    run_impl(
+        tasks, [](void* ctx, int t) { (*static_cast<F*>(ctx))(t); },
+        const_cast<void*>(static_cast<const void*>(&fn)));
   }
 
  private:

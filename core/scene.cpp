@@ -8,7 +8,9 @@ namespace invfree {
 
 namespace {
 
-SceneDef make_compress() { return SceneDef{}; }
+SceneDef make_compress() {
+  return SceneDef{};
+}
 
 SceneDef make_drop() {
   SceneDef s;
@@ -36,7 +38,9 @@ std::optional<Integrator> integrator_from_name(std::string_view name) {
   return std::nullopt;
 }
 
-std::span<const SceneEntry> builtin_scenes() { return kScenes; }
+std::span<const SceneEntry> builtin_scenes() {
+  return kScenes;
+}
 
 std::optional<SceneDef> find_builtin_scene(std::string_view name) {
   for (const auto& e : kScenes)
@@ -51,7 +55,8 @@ std::string validate_scene(const SceneDef& s) {
   if (!positive(s.side)) return "mesh.side: must be a finite number > 0";
   if (s.n_seg < 1) return "mesh.n_seg: must be an integer >= 1";
   if (s.n_seg > kMaxSegments)
-    return "mesh.n_seg: at most " + std::to_string(kMaxSegments) + " (the mesh would not fit in memory)";
+    return "mesh.n_seg: at most " + std::to_string(kMaxSegments) +
+           " (the mesh would not fit in memory)";
   if (auto e = check_mesh_fits_in_memory(s.n_seg); !e.empty()) return "mesh.n_seg: " + e;
   if (!positive(s.density)) return "mesh.density: must be a finite number > 0";
   if (!(std::isfinite(s.jitter) && s.jitter >= 0.0 && s.jitter < 0.5))
@@ -65,7 +70,8 @@ std::string validate_scene(const SceneDef& s) {
   if (!s.initial_velocity.allFinite()) return "initial.velocity: must be finite";
   if (!s.gravity.allFinite()) return "gravity.g: must be finite";
   if (!std::isfinite(s.ground_y)) return "ground.y: must be finite";
-  if (!(std::isfinite(s.friction) && s.friction >= 0.0)) return "ground.friction: must be a finite number >= 0";
+  if (!(std::isfinite(s.friction) && s.friction >= 0.0))
+    return "ground.friction: must be a finite number >= 0";
   if (!std::isfinite(s.ceiling_y)) return "ceiling.y: must be finite";
   if (!std::isfinite(s.ceiling_velocity)) return "ceiling.velocity: must be finite";
   if (!std::isfinite(s.ceiling_stop)) return "ceiling.stop: must be finite";

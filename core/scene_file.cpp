@@ -1,8 +1,7 @@
 #include "core/scene_file.h"
 
-#include <toml++/toml.h>
-
 #include <sys/stat.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cctype>
@@ -79,7 +78,8 @@ bool has_control_characters(std::string_view text) {
 // scene has a non-ASCII character) the text is refused. Valid TOML keeps its meaning.
 
 bool tomlpp_unsafe(char32_t c) {
-  return (c >= 0xA1 && c <= 0x499) || (c >= 0x2C8E && c <= 0x3087 && c != 0x3000) || (c >= 0xFB26 && c <= 0xFEFE);
+  return (c >= 0xA1 && c <= 0x499) || (c >= 0x2C8E && c <= 0x3087 && c != 0x3000) ||
+         (c >= 0xFB26 && c <= 0xFEFE);
 }
 
 // The code point of the UTF-8 sequence at t[i] and its length; 0 for an invalid or
@@ -87,7 +87,11 @@ bool tomlpp_unsafe(char32_t c) {
 size_t utf8_at(std::string_view t, size_t i, char32_t* cp) {
   const auto b = [&](size_t k) { return static_cast<unsigned char>(t[k]); };
   const unsigned char c = b(i);
-  const size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+  const size_t n = c < 0x80           ? 1
+                   : (c >> 5) == 0x6  ? 2
+                   : (c >> 4) == 0xE  ? 3
+                   : (c >> 3) == 0x1E ? 4
+                                      : 0;
   if (n == 0 || i + n > t.size()) return 0;
   char32_t v = n == 1 ? c : n == 2 ? (c & 0x1F) : n == 3 ? (c & 0x0F) : (c & 0x07);
   for (size_t k = 1; k < n; ++k) {
@@ -107,7 +111,9 @@ std::string unicode_escape(char32_t c) {
 bool has_unsafe(std::string_view text) {
   for (size_t i = 0; i < text.size(); ++i) {
     char32_t cp = 0;
-    if (static_cast<unsigned char>(text[i]) >= 0x80 && utf8_at(text, i, &cp) > 1 && tomlpp_unsafe(cp)) return true;
+    if (static_cast<unsigned char>(text[i]) >= 0x80 && utf8_at(text, i, &cp) > 1 &&
+        tomlpp_unsafe(cp))
+      return true;
   }
   return false;
 }
@@ -137,7 +143,9 @@ std::string tomlpp_safe_text(std::string_view t, std::string* out, int* line) {
   out->reserve(t.size() + 16);
   *line = 1;
   auto at = [&](size_t i, std::string_view s) { return t.substr(i, s.size()) == s; };
-  auto non_ascii = [&](size_t i) { return i < t.size() && static_cast<unsigned char>(t[i]) >= 0x80; };
+  auto non_ascii = [&](size_t i) {
+    return i < t.size() && static_cast<unsigned char>(t[i]) >= 0x80;
+  };
   auto copy = [&](size_t from, size_t to) {  // copies t[from, to), counting lines
     for (size_t k = from; k < to; ++k) *line += t[k] == '\n';
     out->append(t.substr(from, to - from));
@@ -154,7 +162,8 @@ std::string tomlpp_safe_text(std::string_view t, std::string* out, int* line) {
         const bool multi = at(i, "'''");
         const size_t open = multi ? 3 : 1;
         size_t end = i + open;
-        while (end < t.size() && !(multi ? at(end, "'''") : (t[end] == '\'' || t[end] == '\n'))) ++end;
+        while (end < t.size() && !(multi ? at(end, "'''") : (t[end] == '\'' || t[end] == '\n')))
+          ++end;
         size_t content_end = end, stop = end;
         if (multi && end < t.size()) {
           size_t quotes = 3;
@@ -236,13 +245,20 @@ std::string tomlpp_safe_text(std::string_view t, std::string* out, int* line) {
 
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date/time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
   }
 }
 
@@ -286,23 +302,27 @@ std::string read_vec2(const toml::node& n, Vec2& out) {
   const toml::array* a = n.as_array();
   if (!a || a->size() != 2) return "expected an array of two numbers, e.g. [0.0, -9.81]";
   for (int k = 0; k < 2; ++k)
-    if (auto r = read_number(*a->get(k), out[k]); !r.empty()) return "element " + std::to_string(k) + ": " + r;
+    if (auto r = read_number(*a->get(k), out[k]); !r.empty())
+      return "element " + std::to_string(k) + ": " + r;
   return "";
 }
 
-std::string set_double(const toml::node& n, double& field) { return read_number(n, field); }
+std::string set_double(const toml::node& n, double& field) {
+  return read_number(n, field);
+}
 
 std::string set_int(const toml::node& n, int& field, long long lo, long long hi) {
   long long v = 0;
   if (auto r = read_int(n, v); !r.empty()) return r;
-  if (v < lo || v > hi) return "must be between " + std::to_string(lo) + " and " + std::to_string(hi);
+  if (v < lo || v > hi)
+    return "must be between " + std::to_string(lo) + " and " + std::to_string(hi);
   field = static_cast<int>(v);
   return "";
 }
 
 template <class Enum>
-std::string set_enum(const toml::node& n, Enum& field, std::optional<Enum> (*parse)(std::string_view),
-                     const char* choices) {
+std::string set_enum(const toml::node& n, Enum& field,
+                     std::optional<Enum> (*parse)(std::string_view), const char* choices) {
   std::string s;
   if (auto r = read_string(n, s); !r.empty()) return r;
   auto v = parse(s);
@@ -328,7 +348,8 @@ struct KeySpec {
 
 const KeySpec kKeys[] = {
     {"mesh", "side", [](SceneDef& s, const toml::node& n) { return set_double(n, s.side); }},
-    {"mesh", "n_seg", [](SceneDef& s, const toml::node& n) { return set_int(n, s.n_seg, 1, kMaxSegments); }},
+    {"mesh", "n_seg",
+     [](SceneDef& s, const toml::node& n) { return set_int(n, s.n_seg, 1, kMaxSegments); }},
     {"mesh", "density", [](SceneDef& s, const toml::node& n) { return set_double(n, s.density); }},
     {"mesh", "mass",
      [](SceneDef& s, const toml::node& n) {
@@ -380,22 +401,27 @@ const KeySpec kKeys[] = {
      }},
     {"initial", "velocity",
      [](SceneDef& s, const toml::node& n) { return read_vec2(n, s.initial_velocity); }},
-    {"gravity", "enabled", [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_gravity); }},
+    {"gravity", "enabled",
+     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_gravity); }},
     {"gravity", "g", [](SceneDef& s, const toml::node& n) { return read_vec2(n, s.gravity); }},
-    {"ground", "enabled", [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_ground); }},
+    {"ground", "enabled",
+     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_ground); }},
     {"ground", "y", [](SceneDef& s, const toml::node& n) { return set_double(n, s.ground_y); }},
-    {"ground", "friction", [](SceneDef& s, const toml::node& n) { return set_double(n, s.friction); }},
-    {"ceiling", "enabled", [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_ceiling); }},
+    {"ground", "friction",
+     [](SceneDef& s, const toml::node& n) { return set_double(n, s.friction); }},
+    {"ceiling", "enabled",
+     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.has_ceiling); }},
     {"ceiling", "y", [](SceneDef& s, const toml::node& n) { return set_double(n, s.ceiling_y); }},
     {"ceiling", "velocity",
      [](SceneDef& s, const toml::node& n) { return set_double(n, s.ceiling_velocity); }},
-    {"ceiling", "stop", [](SceneDef& s, const toml::node& n) { return set_double(n, s.ceiling_stop); }},
+    {"ceiling", "stop",
+     [](SceneDef& s, const toml::node& n) { return set_double(n, s.ceiling_stop); }},
     {"barrier", "dhat", [](SceneDef& s, const toml::node& n) { return set_double(n, s.dhat); }},
     {"barrier", "kappa", [](SceneDef& s, const toml::node& n) { return set_double(n, s.kappa); }},
 };
 
-const char* const kSections[] = {"mesh", "material", "time", "solver", "initial",
-                                 "gravity", "ground", "ceiling", "barrier"};
+const char* const kSections[] = {"mesh",    "material", "time",    "solver", "initial",
+                                 "gravity", "ground",   "ceiling", "barrier"};
 
 // Sections whose presence switches a term on.
 bool* term_flag(SceneDef& s, std::string_view section) {
@@ -473,7 +499,8 @@ std::string set_material(SceneDef& s, const MaterialInput& in) {
     young_poisson_from_lame(s.lame, &E, &nu);
     s.lame = lame_from_young_poisson(in.E.value_or(E), in.nu.value_or(nu));
     if (!std::isfinite(s.lame.mu) || !std::isfinite(s.lame.lambda))
-      return std::string(in.E ? "material.E" : "material.nu") + ": too large (mu and lambda must be finite)";
+      return std::string(in.E ? "material.E" : "material.nu") +
+             ": too large (mu and lambda must be finite)";
   } else {
     if (in.mu) s.lame.mu = *in.mu;
     if (in.lambda) s.lame.lambda = *in.lambda;
@@ -484,12 +511,16 @@ std::string set_material(SceneDef& s, const MaterialInput& in) {
 // Applies one key (already known to exist). Returns "" or a reason.
 std::string apply_key(SceneDef& s, std::string_view section, const KeySpec& spec,
                       const toml::node& value, MaterialInput* material) {
-  if (bool* flag = term_flag(s, section); flag && std::string_view(spec.key) != "enabled") *flag = true;
+  if (bool* flag = term_flag(s, section); flag && std::string_view(spec.key) != "enabled")
+    *flag = true;
   if (spec.set) return spec.set(s, value);
   double v = 0.0;
   if (auto r = read_number(value, v); !r.empty()) return r;
   const std::string_view k = spec.key;
-  (k == "E" ? material->E : k == "nu" ? material->nu : k == "mu" ? material->mu : material->lambda) = v;
+  (k == "E"    ? material->E
+   : k == "nu" ? material->nu
+   : k == "mu" ? material->mu
+               : material->lambda) = v;
   return "";
 }
 
@@ -508,7 +539,8 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   }
   std::string safe_text;
   int hazard_line = 0;
-  if (const std::string hazard = tomlpp_safe_text(text, &safe_text, &hazard_line); !hazard.empty()) {
+  if (const std::string hazard = tomlpp_safe_text(text, &safe_text, &hazard_line);
+      !hazard.empty()) {
     out.error = located(source, hazard_line, "malformed TOML: " + hazard);
     return out;
   }
@@ -518,7 +550,8 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   } catch (const toml::parse_error& e) {
     std::string what(e.description());
     std::replace(what.begin(), what.end(), '\n', ' ');
-    out.error = located(source, static_cast<int>(e.source().begin.line), "malformed TOML: " + printable(what, 200));
+    out.error = located(source, static_cast<int>(e.source().begin.line),
+                        "malformed TOML: " + printable(what, 200));
     return out;
   }
   SceneDef s;
@@ -534,7 +567,8 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     const std::string k(key.str());
     const int line = static_cast<int>(node.source().begin.line);
     if (k == "name") {
-      if (auto r = read_string(node, s.name); !r.empty()) return {std::nullopt, located(source, line, "name: " + r)};
+      if (auto r = read_string(node, s.name); !r.empty())
+        return {std::nullopt, located(source, line, "name: " + r)};
       if (has_control_characters(s.name))
         return {std::nullopt, located(source, line, "name: must not contain control characters")};
       continue;
@@ -542,10 +576,19 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     if (!is_section(k)) {
       const bool looks_like_key = !node.is_table();
       std::string hint = did_you_mean(k, {std::begin(kSections), std::end(kSections)});
-      return {std::nullopt, located(source, line, printable(k) + ": " + (looks_like_key ? "unknown top-level key (only \"name\" and sections are allowed)" + hint : unknown_section_error(k)))};
+      return {
+          std::nullopt,
+          located(source, line,
+                  printable(k) + ": " +
+                      (looks_like_key
+                           ? "unknown top-level key (only \"name\" and sections are allowed)" + hint
+                           : unknown_section_error(k)))};
     }
     const toml::table* table = node.as_table();
-    if (!table) return {std::nullopt, located(source, line, k + ": expected a [" + k + "] section, got " + type_name(node))};
+    if (!table)
+      return {
+          std::nullopt,
+          located(source, line, k + ": expected a [" + k + "] section, got " + type_name(node))};
     if (bool* flag = term_flag(s, k)) *flag = true;
     // Two passes: `enabled` last, so `enabled = false` wins over the other keys of its
     // section (which switch the term on, as they do in --set) whatever their order.
@@ -556,7 +599,9 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
         const std::string full = k + "." + printable(sk);
         const int vline = static_cast<int>(value.source().begin.line);
         const KeySpec* spec = find_key(k, sk);
-        if (!spec) return {std::nullopt, located(source, vline, full + ": unknown key" + did_you_mean(sk, keys_of(k)))};
+        if (!spec)
+          return {std::nullopt,
+                  located(source, vline, full + ": unknown key" + did_you_mean(sk, keys_of(k)))};
         if (auto r = apply_key(s, k, *spec, value, &material); !r.empty())
           return {std::nullopt, located(source, vline, full + ": " + r)};
         lines[full] = vline;
@@ -579,13 +624,16 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
 SceneLoad load_scene(const std::string& name_or_path) {
   if (auto builtin = find_builtin_scene(name_or_path)) return {builtin, ""};
   const std::string where = printable(name_or_path, 200);
-  auto error = [&](const std::string& what) { return SceneLoad{std::nullopt, where + ": " + what}; };
+  auto error = [&](const std::string& what) {
+    return SceneLoad{std::nullopt, where + ": " + what};
+  };
   struct stat st {};
   if (::stat(name_or_path.c_str(), &st) != 0) {
     const int err = errno;
     if (err == ENOENT || err == ENOTDIR) {
       std::string names;
-      for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
+      for (const auto& e : builtin_scenes())
+        names += std::string(names.empty() ? "" : ", ") + e.name;
       return error("no such file, and not a built-in scene (" + names + ")");
     }
     return error(std::string("cannot open: ") + std::strerror(err));
@@ -616,9 +664,11 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   const size_t dot = lhs.find('.');
   if (dot == std::string::npos) return where + ": expected section.key=value";
   const std::string section = lhs.substr(0, dot), key = lhs.substr(dot + 1);
-  if (!is_section(section)) return where + ": " + printable(section) + ": " + unknown_section_error(section);
+  if (!is_section(section))
+    return where + ": " + printable(section) + ": " + unknown_section_error(section);
   const KeySpec* spec = find_key(section, key);
-  if (!spec) return where + ": " + printable(lhs) + ": unknown key" + did_you_mean(key, keys_of(section));
+  if (!spec)
+    return where + ": " + printable(lhs) + ": unknown key" + did_you_mean(key, keys_of(section));
   // The value in TOML syntax; failing that, a bare word stands for a string
   // (--set material.model=linear).
   auto parse_value = [](const std::string& text, toml::table& out) {
@@ -639,7 +689,8 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
       if (c == '"' || c == '\\') escaped += '\\';
       escaped += c;
     }
-    if (!parse_value("v = \"" + escaped + "\"", parsed)) return where + ": " + lhs + ": cannot parse the value";
+    if (!parse_value("v = \"" + escaped + "\"", parsed))
+      return where + ": " + lhs + ": cannot parse the value";
   }
   // "v = 1\n[mesh]\nside = 2" parses, but is not one value.
   if (parsed.size() != 1 || !parsed.get("v"))
@@ -695,20 +746,23 @@ std::string scene_to_toml(const SceneDef& s) {
   auto enabled = [](bool on) { return on ? "" : "enabled = false\n"; };
   o << "name = " << toml_string(s.name) << "\n\n";
   o << "[mesh]\nside = " << s.side << "\nn_seg = " << s.n_seg << "\ndensity = " << s.density
-    << "\nmass = \"" << (s.mass == MassMode::Uniform ? "uniform" : "lumped") << "\"\njitter = " << s.jitter
-    << "\nseed = " << s.seed << "\n";
+    << "\nmass = \"" << (s.mass == MassMode::Uniform ? "uniform" : "lumped")
+    << "\"\njitter = " << s.jitter << "\nseed = " << s.seed << "\n";
   o << "\n[material]\nmodel = \"" << model_name(s.model) << "\"\nmu = " << s.lame.mu
     << "\nlambda = " << s.lame.lambda << "\n";
   o << "\n[time]\nh = " << s.h << "\ntol = " << s.tol << "\nmax_newton = " << s.max_newton << "\n";
-  o << "\n[solver]\nprojection = \"" << projection_name(s.projection) << "\"\ninversion_filter = "
-    << (s.inversion_filter ? "true" : "false") << "\nintegrator = \"" << integrator_name(s.integrator)
-    << "\"\nlinear_solver = \"" << linear_solver_name(s.linear_solver) << "\"\nstep_expansion = "
-    << (s.step_expansion ? "true" : "false")
+  o << "\n[solver]\nprojection = \"" << projection_name(s.projection)
+    << "\"\ninversion_filter = " << (s.inversion_filter ? "true" : "false") << "\nintegrator = \""
+    << integrator_name(s.integrator) << "\"\nlinear_solver = \""
+    << linear_solver_name(s.linear_solver)
+    << "\"\nstep_expansion = " << (s.step_expansion ? "true" : "false")
     << "\nfriction_flip_damping = " << (s.friction_flip_damping ? "true" : "false") << "\n";
   o << "\n[initial]\nvelocity = " << vec(s.initial_velocity) << "\n";
   o << "\n[gravity]\n" << enabled(s.has_gravity) << "g = " << vec(s.gravity) << "\n";
-  o << "\n[ground]\n" << enabled(s.has_ground) << "y = " << s.ground_y << "\nfriction = " << s.friction << "\n";
-  o << "\n[ceiling]\n" << enabled(s.has_ceiling) << "y = " << s.ceiling_y << "\nvelocity = " << s.ceiling_velocity
+  o << "\n[ground]\n"
+    << enabled(s.has_ground) << "y = " << s.ground_y << "\nfriction = " << s.friction << "\n";
+  o << "\n[ceiling]\n"
+    << enabled(s.has_ceiling) << "y = " << s.ceiling_y << "\nvelocity = " << s.ceiling_velocity
     << "\nstop = " << s.ceiling_stop << "\n";
   o << "\n[barrier]\ndhat = " << s.dhat << "\nkappa = " << s.kappa << "\n";
   return o.str();

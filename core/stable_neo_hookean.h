@@ -19,7 +19,8 @@ struct StableNeoHookean {
   static double energy_density(const Mat2& F, const Lame& m) {
     const double lam = m.lambda + m.mu;
     const double J = F.determinant();
-    return 0.5 * m.mu * (F.squaredNorm() - 2.0) - m.mu * (J - 1.0) + 0.5 * lam * (J - 1.0) * (J - 1.0);
+    return 0.5 * m.mu * (F.squaredNorm() - 2.0) - m.mu * (J - 1.0) +
+           0.5 * lam * (J - 1.0) * (J - 1.0);
   }
 
   static Mat2 first_piola(const Mat2& F, const Lame& m) {

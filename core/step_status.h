@@ -14,12 +14,18 @@ enum class StepStatus {
 
 inline const char* step_status_name(StepStatus s) {
   switch (s) {
-    case StepStatus::Ok: return "ok";
-    case StepStatus::NewtonFailed: return "newton-failed";
-    case StepStatus::LinearSolveFailed: return "linear-solve-failed";
-    case StepStatus::NonFinite: return "non-finite";
-    case StepStatus::Inverted: return "inverted";
-    case StepStatus::Penetrated: return "penetrated";
+    case StepStatus::Ok:
+      return "ok";
+    case StepStatus::NewtonFailed:
+      return "newton-failed";
+    case StepStatus::LinearSolveFailed:
+      return "linear-solve-failed";
+    case StepStatus::NonFinite:
+      return "non-finite";
+    case StepStatus::Inverted:
+      return "inverted";
+    case StepStatus::Penetrated:
+      return "penetrated";
   }
   return "?";
 }

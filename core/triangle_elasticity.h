@@ -40,7 +40,8 @@ inline Mat46 deformation_gradient_jacobian(const Mat2& IB) {
 // P and dP/dF at once: the model's fused version when it has one (sharing work between
 // the two), otherwise the two separate functions.
 template <class M>
-inline void stress_and_derivative(const Mat2& F, const Lame& l, bool project_to_psd, Mat2& P, Mat4& dPdF) {
+inline void stress_and_derivative(const Mat2& F, const Lame& l, bool project_to_psd, Mat2& P,
+                                  Mat4& dPdF) {
   if constexpr (requires { M::stress_and_derivative(F, l, project_to_psd, P, dPdF); }) {
     M::stress_and_derivative(F, l, project_to_psd, P, dPdF);
   } else {
@@ -68,9 +69,8 @@ struct TriangleElasticity {
     Mat2 P;
     Mat4 C;
     stress_and_derivative<M>(F, l, projection == HessianProjection::Diagonal, P, C);
-    const double D[3][2] = {{-IB(0, 0) - IB(1, 0), -IB(0, 1) - IB(1, 1)},
-                            {IB(0, 0), IB(0, 1)},
-                            {IB(1, 0), IB(1, 1)}};
+    const double D[3][2] = {
+        {-IB(0, 0) - IB(1, 0), -IB(0, 1) - IB(1, 1)}, {IB(0, 0), IB(0, 1)}, {IB(1, 0), IB(1, 1)}};
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < 2; ++i) g(2 * a + i) = area * (P(i, 0) * D[a][0] + P(i, 1) * D[a][1]);
     // T = dPdF * dF/dx (4x6), column 2b+k = D_b0 C(:, k) + D_b1 C(:, k+2).
@@ -89,7 +89,8 @@ struct TriangleElasticity {
       }
     if (projection == HessianProjection::Full) {
       H = project_psd<6>(H);
-      H = (0.5 * (H + H.transpose())).eval();  // the eigen-reconstruction is symmetric only to rounding
+      H = (0.5 * (H + H.transpose()))
+              .eval();  // the eigen-reconstruction is symmetric only to rounding
     }
   }
 };

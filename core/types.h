@@ -18,8 +18,12 @@ using VecX = Eigen::VectorXd;
 
 // Column-major flattening of a 2x2 matrix: [F11, F21, F12, F22]. Every 4-vector and
 // 4x4 "dP/dF" in the project uses this order (Eigen's own storage order).
-inline Vec4 flatten(const Mat2& m) { return Eigen::Map<const Vec4>(m.data()); }
-inline Mat2 unflatten(const Vec4& v) { return Eigen::Map<const Mat2>(v.data()); }
+inline Vec4 flatten(const Mat2& m) {
+  return Eigen::Map<const Vec4>(m.data());
+}
+inline Mat2 unflatten(const Vec4& v) {
+  return Eigen::Map<const Mat2>(v.data());
+}
 
 // det(F) = F11 F22 - F12 F21 with Kahan's fused-multiply-add trick: nearly correctly
 // rounded even when the two products cancel (a thin triangle, a small singular value).

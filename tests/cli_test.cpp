@@ -1,10 +1,9 @@
 // The `invfree` executable end to end: outputs of `simulate`, and one-line errors with
 // exit code 2 for bad input.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -22,21 +21,26 @@ namespace {
 using test::CommandResult;
 using test::slurp;
 
-CommandResult run(const std::string& args) { return test::run_command(INVFREE_EXE, args, false); }
+CommandResult run(const std::string& args) {
+  return test::run_command(INVFREE_EXE, args, false);
+}
 
 TEST(Cli, SimulateWritesCsvAndObj) {
   const std::string dir = ::testing::TempDir() + "/cli_sim_" + std::to_string(::getpid());
   std::filesystem::remove_all(dir);
-  const CommandResult r = run("simulate --scene compress --steps 5 --csv " + dir + "/c.csv --obj " + dir + "/obj");
+  const CommandResult r =
+      run("simulate --scene compress --steps 5 --csv " + dir + "/c.csv --obj " + dir + "/obj");
   ASSERT_EQ(r.code, 0) << r.err;
   std::istringstream csv(slurp(dir + "/c.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,wall_ms");
+  EXPECT_EQ(line,
+            "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,wall_ms");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, 5);
-  for (int k = 0; k <= 5; ++k) ASSERT_TRUE(std::filesystem::exists(dir + "/obj/" + std::to_string(k) + ".obj"));
+  for (int k = 0; k <= 5; ++k)
+    ASSERT_TRUE(std::filesystem::exists(dir + "/obj/" + std::to_string(k) + ".obj"));
   std::istringstream obj(slurp(dir + "/obj/0.obj"));
   int v = 0, f = 0;
   while (std::getline(obj, line)) {
@@ -73,7 +77,8 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("invfree: ", 0), 0u) << r.err;
   }
-  std::printf("bad inputs tried (command line, basic): %zu, all clean one-line errors\n", std::size(cases));
+  std::printf("bad inputs tried (command line, basic): %zu, all clean one-line errors\n",
+              std::size(cases));
   EXPECT_NE(run("simulate --scene " + dir + "/bad_nu.toml").err.find("bad_nu.toml:3: material.nu"),
             std::string::npos);
 }
@@ -99,7 +104,10 @@ TEST(Cli, NewtonFailureExitsThree) {
 TEST(Cli, EveryBadCommandLineValueExitsTwo) {
   const std::string dir = ::testing::TempDir() + "/cli_bad_" + std::to_string(::getpid());
   std::filesystem::create_directories(dir + "/subdir");
-  { std::ofstream(dir + "/binary.toml", std::ios::binary) << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16); }
+  {
+    std::ofstream(dir + "/binary.toml", std::ios::binary)
+        << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
+  }
   { std::ofstream(dir + "/malformed.toml") << "[mesh\nn_seg = 4\n"; }
   { std::ofstream(dir + "/typo.toml") << "[mesh]\nnseg = 4\n"; }
   { std::ofstream(dir + "/both.toml") << "[material]\nE = 1e5\nnu = 0.3\nmu = 5\n"; }
@@ -126,13 +134,18 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --scene /dev/zero", "/dev/zero: not a regular file"},
       {"simulate --scene /proc/self/mem", "/proc/self/mem: could not read the file"},
       {"simulate --scene " + dir + "/malformed.toml", dir + "/malformed.toml:1: malformed TOML"},
-      {"simulate --scene " + dir + "/typo.toml", dir + "/typo.toml:2: mesh.nseg: unknown key (did you mean \"n_seg\"?)"},
-      {"simulate --scene " + dir + "/both.toml", dir + "/both.toml:2: material.E: give either E and nu or mu and lambda"},
-      {"simulate --scene " + dir + "/through.toml", dir + "/through.toml:2: ground.y: the square starts on or through"},
-      {"simulate --scene " + dir + "/ceiling.toml", dir + "/ceiling.toml:4: ceiling.y: must be above ground.y"},
+      {"simulate --scene " + dir + "/typo.toml",
+       dir + "/typo.toml:2: mesh.nseg: unknown key (did you mean \"n_seg\"?)"},
+      {"simulate --scene " + dir + "/both.toml",
+       dir + "/both.toml:2: material.E: give either E and nu or mu and lambda"},
+      {"simulate --scene " + dir + "/through.toml",
+       dir + "/through.toml:2: ground.y: the square starts on or through"},
+      {"simulate --scene " + dir + "/ceiling.toml",
+       dir + "/ceiling.toml:4: ceiling.y: must be above ground.y"},
       {"simulate --set", "--set"},
       {"simulate --set material.nu", "--set material.nu: expected section.key=value"},
-      {"simulate --set 'material.nu=0.3\nmesh.side=2'", "--set material.nu=0.3\\nmesh.side=2: material.nu: expected a single value"},
+      {"simulate --set 'material.nu=0.3\nmesh.side=2'",
+       "--set material.nu=0.3\\nmesh.side=2: material.nu: expected a single value"},
       {"simulate --set 'mesh.n$(echo x)=1'", "unknown key"},
       {"simulate --set time.h=-0.01", "--set time.h=-0.01: time.h: must be a finite number > 0"},
       {"simulate --set time.h=nan", "time.h: must be a finite number"},
@@ -142,7 +155,8 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --set ceiling.y=-1.2", "ceiling.y: must be above ground.y"},
       {"simulate --set material.model=neohookean", "unknown value \"neohookean\" (expected one of"},
       {"simulate --set gravity.g=1", "gravity.g: expected an array of two numbers"},
-      {"simulate --obj " + dir, dir + ": directory is not empty (use --force to write into it anyway)"},
+      {"simulate --obj " + dir,
+       dir + ": directory is not empty (use --force to write into it anyway)"},
       // An empty path is bad input for every output option (study and stability used to
       // write their files at the filesystem root).
       {"simulate --obj ''", "--obj: empty path"},
@@ -164,7 +178,8 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
     EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("invfree: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << "\nexpected: " << c.expected << "\ngot: " << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos)
+        << c.args << "\nexpected: " << c.expected << "\ngot: " << r.err;
     EXPECT_EQ(r.out, "") << c.args << ": nothing may run on bad input";
   }
   std::printf("bad inputs tried (command line): %zu, all clean one-line errors\n", cases.size());
@@ -175,12 +190,15 @@ TEST(Cli, StepFailureNamesTheStepAndKeepsCompleteOutput) {
   const std::string dir = ::testing::TempDir() + "/cli_fail_" + std::to_string(::getpid());
   std::filesystem::remove_all(dir);
   // Newton's cap of 1 iteration with an unreachable tolerance: the first step fails.
-  const CommandResult r = run("simulate --steps 3 --set time.max_newton=1 --set time.tol=1e-14 --csv " + dir +
-                              "/run.csv --obj " + dir + "/obj");
+  const CommandResult r =
+      run("simulate --steps 3 --set time.max_newton=1 --set time.tol=1e-14 --csv " + dir +
+          "/run.csv --obj " + dir + "/obj");
   EXPECT_EQ(r.code, 3);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("invfree: step 1 failed: newton-failed: Newton reached its iteration cap (1) (t = 0.01 s)"),
-            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("invfree: step 1 failed: newton-failed: Newton reached its iteration cap "
+                       "(1) (t = 0.01 s)"),
+            std::string::npos)
+      << r.err;
   // The outputs describe the steps that succeeded: the initial mesh and an empty table.
   EXPECT_TRUE(std::filesystem::exists(dir + "/obj/0.obj"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/obj/1.obj"));

@@ -46,8 +46,10 @@ struct Fixture {
     for (int i = 0; i < n; ++i) {
       z.segment<2>(2 * i) = mesh.rest[i] + 0.02 * Vec2(u(rng), u(rng));
       // Keep boundary rows inside the barrier band, never through a plane.
-      if (std::abs(mesh.rest[i].y() + 0.5) < 1e-12) z[2 * i + 1] = p.ground_y + 0.002 + 0.006 * (u(rng) + 1) / 2;
-      if (std::abs(mesh.rest[i].y() - 0.5) < 1e-12) z[2 * i + 1] = 0.5 + 0.006 - 0.002 - 0.006 * (u(rng) + 1) / 2;
+      if (std::abs(mesh.rest[i].y() + 0.5) < 1e-12)
+        z[2 * i + 1] = p.ground_y + 0.002 + 0.006 * (u(rng) + 1) / 2;
+      if (std::abs(mesh.rest[i].y() - 0.5) < 1e-12)
+        z[2 * i + 1] = 0.5 + 0.006 - 0.002 - 0.006 * (u(rng) + 1) / 2;
       p.x_tilde.segment<2>(2 * i) = mesh.rest[i] + 0.05 * Vec2(u(rng), u(rng));
       // Friction displacement: half the nodes inside eps_u (smoothed), half beyond (sliding).
       p.x_start.segment<2>(2 * i) = z.segment<2>(2 * i);
@@ -65,7 +67,9 @@ TEST(IncrementalPotential, GradientAndHessianMatchFiniteDifferences) {
       VecX g;
       ip_gradient_hessian(f.p, f.z, g, f.hess);
       const double eps = 1e-7;
-      const std::function<double(const VecX&)> energy = [&](const VecX& z) { return ip_energy(f.p, z); };
+      const std::function<double(const VecX&)> energy = [&](const VecX& z) {
+        return ip_energy(f.p, z);
+      };
       const VecX fd = test::fd_gradient(energy, f.z, eps);
       EXPECT_LT(test::relative_error(g, fd), 1e-6) << model_name(model) << " seed " << seed;
 

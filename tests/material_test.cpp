@@ -61,7 +61,9 @@ TEST_P(MaterialTest, StressDerivativeMatchesFiniteDifferenceOfStress) {
       Vec4 a = flatten(F), b = a;
       a[k] += eps;
       b[k] -= eps;
-      fd.col(k) = (flatten(first_piola(m, unflatten(a), kLame)) - flatten(first_piola(m, unflatten(b), kLame))) / (2 * eps);
+      fd.col(k) = (flatten(first_piola(m, unflatten(a), kLame)) -
+                   flatten(first_piola(m, unflatten(b), kLame))) /
+                  (2 * eps);
     }
     const Mat4 exact = stress_derivative(m, F, kLame, false);
     EXPECT_LT(test::relative_error(exact, fd, kLame.mu), 1e-5) << model_name(m) << "\nF=\n" << F;
@@ -97,8 +99,10 @@ TEST_P(MaterialTest, RotationAndIsotropyInvariance) {
   for (const Mat2& F : samples_for(m)) {
     for (double a : {0.4, 2.0, -2.9}) {
       const double psi = energy_density(m, F, kLame);
-      EXPECT_NEAR(energy_density(m, rotation(a) * F, kLame), psi, 1e-9 * std::max(1.0, std::abs(psi)));
-      EXPECT_NEAR(energy_density(m, F * rotation(a), kLame), psi, 1e-9 * std::max(1.0, std::abs(psi)));
+      EXPECT_NEAR(energy_density(m, rotation(a) * F, kLame), psi,
+                  1e-9 * std::max(1.0, std::abs(psi)));
+      EXPECT_NEAR(energy_density(m, F * rotation(a), kLame), psi,
+                  1e-9 * std::max(1.0, std::abs(psi)));
     }
   }
 }
@@ -160,7 +164,8 @@ TEST(NeoHookean, SoftMaterialHessianIsNotTruncated) {
   a[0] += eps;
   b[0] -= eps;
   const Vec4 fd = (flatten(NeoHookean::first_piola(unflatten(a), soft)) -
-                   flatten(NeoHookean::first_piola(unflatten(b), soft))) / (2 * eps);
+                   flatten(NeoHookean::first_piola(unflatten(b), soft))) /
+                  (2 * eps);
   EXPECT_LT((d.col(0) - fd).norm() / fd.norm(), 1e-7);
   EXPECT_NE(d(0, 0), std::trunc(d(0, 0)));
 }

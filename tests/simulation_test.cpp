@@ -100,7 +100,8 @@ TEST(PlateCompression, ReachesAnalyticPlaneStrainEquilibrium) {
   s.tol = 1e-12;
   ASSERT_EQ(validate_scene(s), "");
   Simulation sim = make_simulation(s);
-  for (int k = 0; k < 60; ++k) ASSERT_EQ(step(sim).status, StepStatus::Ok) << k << " " << step(sim).message;
+  for (int k = 0; k < 60; ++k)
+    ASSERT_EQ(step(sim).status, StepStatus::Ok) << k << " " << step(sim).message;
   ASSERT_LT(max_speed(sim), 1e-11);
   // Measured vertical stretch, and the homogeneous F of every triangle.
   const auto& x = sim.x;
@@ -162,7 +163,8 @@ TEST(InvertibleModels, StepThroughCompressWithoutFailing) {
     SceneDef s = *find_builtin_scene("compress");
     s.model = m;
     Simulation sim = make_simulation(s);
-    for (int k = 0; k < 150; ++k) ASSERT_EQ(step(sim).status, StepStatus::Ok) << model_name(m) << " step " << k;
+    for (int k = 0; k < 150; ++k)
+      ASSERT_EQ(step(sim).status, StepStatus::Ok) << model_name(m) << " step " << k;
   }
 }
 

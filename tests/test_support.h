@@ -22,10 +22,17 @@ inline std::vector<Mat2> sample_deformation_gradients(bool allow_inverted, int c
   for (int k = 0; k < count; ++k) {
     double s1 = stretch(rng), s2 = stretch(rng);
     switch (k % 5) {
-      case 1: s2 = s1 * (1.0 + 1e-9 * (unit(rng) - 0.5)); break;   // nearly equal
-      case 2: s2 = s1; break;                                       // exactly equal
-      case 3: s2 = 1e-3 + 1e-2 * unit(rng); break;                  // small
-      default: break;
+      case 1:
+        s2 = s1 * (1.0 + 1e-9 * (unit(rng) - 0.5));
+        break;  // nearly equal
+      case 2:
+        s2 = s1;
+        break;  // exactly equal
+      case 3:
+        s2 = 1e-3 + 1e-2 * unit(rng);
+        break;  // small
+      default:
+        break;
     }
     if (allow_inverted && k % 3 == 0) s2 = -s2;
     out.push_back(rotation(angle(rng)) * Vec2(s1, s2).asDiagonal() * rotation(angle(rng)));

@@ -80,9 +80,11 @@ TEST_P(TriangleTest, GradientAndHessianMatchFiniteDifferences) {
         a[k] += eps;
         b[k] -= eps;
         fd.col(k) = (TriangleElasticity<M>::gradient(F_of(a), dFdx, area, kLame) -
-                     TriangleElasticity<M>::gradient(F_of(b), dFdx, area, kLame)) / (2 * eps);
+                     TriangleElasticity<M>::gradient(F_of(b), dFdx, area, kLame)) /
+                    (2 * eps);
       }
-      const Mat6 exact = TriangleElasticity<M>::hessian(F_of(t.x), dFdx, area, kLame, HessianProjection::None);
+      const Mat6 exact =
+          TriangleElasticity<M>::hessian(F_of(t.x), dFdx, area, kLame, HessianProjection::None);
       EXPECT_LT(test::relative_error(exact, fd, kLame.mu), 1e-5) << model_name(m);
 
       for (auto proj : {HessianProjection::Diagonal, HessianProjection::Full}) {

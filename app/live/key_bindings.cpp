@@ -14,8 +14,10 @@ constexpr KeyBinding kKeys[] = {
     {GLFW_KEY_R, 0, Action::Reset, "R", "reset to the initial state (keeps the settings)"},
     {GLFW_KEY_TAB, 0, Action::TogglePanel, "Tab", "hide / show the panel"},
     {GLFW_KEY_F1, 0, Action::ToggleHelp, "F1", "help overlay: these keys"},
-    {GLFW_KEY_P, GLFW_MOD_CONTROL, Action::Screenshot, "Ctrl+P", "screenshot (numbered PNG, path printed)"},
-    {GLFW_KEY_R, GLFW_MOD_CONTROL, Action::ToggleRecord, "Ctrl+R", "start / stop recording a PNG sequence"},
+    {GLFW_KEY_P, GLFW_MOD_CONTROL, Action::Screenshot, "Ctrl+P",
+     "screenshot (numbered PNG, path printed)"},
+    {GLFW_KEY_R, GLFW_MOD_CONTROL, Action::ToggleRecord, "Ctrl+R",
+     "start / stop recording a PNG sequence"},
     {GLFW_KEY_F, 0, Action::FitView, "F", "fit the view to the scene"},
     {GLFW_KEY_ESCAPE, 0, Action::Quit, "Esc", "quit"},
 };
@@ -28,8 +30,12 @@ constexpr MouseBinding kMouse[] = {
 
 }  // namespace
 
-std::span<const KeyBinding> key_bindings() { return kKeys; }
-std::span<const MouseBinding> mouse_bindings() { return kMouse; }
+std::span<const KeyBinding> key_bindings() {
+  return kKeys;
+}
+std::span<const MouseBinding> mouse_bindings() {
+  return kMouse;
+}
 
 std::optional<Action> action_for_key(int key, int mods) {
   const int ctrl = mods & GLFW_MOD_CONTROL;

@@ -9,11 +9,21 @@
 
 namespace invfree::live {
 
-enum class Action { TogglePlay, Step, Reset, TogglePanel, ToggleHelp, Screenshot, ToggleRecord, FitView, Quit };
+enum class Action {
+  TogglePlay,
+  Step,
+  Reset,
+  TogglePanel,
+  ToggleHelp,
+  Screenshot,
+  ToggleRecord,
+  FitView,
+  Quit
+};
 
 struct KeyBinding {
-  int key;          // GLFW_KEY_*
-  int mods;         // GLFW_MOD_* that must be held (Shift/Alt/Super are ignored otherwise)
+  int key;   // GLFW_KEY_*
+  int mods;  // GLFW_MOD_* that must be held (Shift/Alt/Super are ignored otherwise)
   Action action;
   const char* key_name;
   const char* description;

@@ -7,12 +7,12 @@
 #include <imgui.h>
 
 #include <chrono>
-#include <future>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 
 #include "app/exit_codes.h"
 #include "app/live/key_bindings.h"
@@ -35,7 +35,9 @@ namespace {
 
 std::string g_glfw_error;  // the last GLFW error, for one-line messages
 
-void on_glfw_error(int, const char* description) { g_glfw_error = description ? description : "unknown error"; }
+void on_glfw_error(int, const char* description) {
+  g_glfw_error = description ? description : "unknown error";
+}
 
 // GLFW is process-wide: initialised by the first window and left so until the process
 // exits. glfwTerminate would unload libGL and Mesa's driver, and the allocations they
@@ -50,7 +52,8 @@ constexpr int kPngCompression = 1;  // fastest zlib level: recording keeps up wi
 
 std::string no_window_message(const std::string& reason) {
   return "cannot open the live window (" + reason +
-         "); for pictures without a display use `invfree render`, or run `xvfb-run -a invfree live ...`";
+         "); for pictures without a display use `invfree render`, or run `xvfb-run -a invfree live "
+         "...`";
 }
 
 // An ImGui draw callback: the next draw commands (the opaque frame) without blending.
@@ -66,7 +69,8 @@ Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) 
   img.rgba.resize(rgba.size());
   const size_t row = static_cast<size_t>(w) * 4;
   for (int y = 0; y < h; ++y)
-    std::copy(rgba.begin() + static_cast<long>((h - 1 - y) * row), rgba.begin() + static_cast<long>((h - y) * row),
+    std::copy(rgba.begin() + static_cast<long>((h - 1 - y) * row),
+              rgba.begin() + static_cast<long>((h - y) * row),
               img.rgba.begin() + static_cast<long>(y * row));
   return img;
 }
@@ -119,7 +123,6 @@ struct LiveAppImpl {
     if (imgui_glfw) ImGui_ImplGlfw_Shutdown();
     if (imgui) ImGui::DestroyContext(imgui);
     if (window) glfwDestroyWindow(window);
-
   }
 
   void say(const std::string& line) {
@@ -165,24 +168,36 @@ struct LiveAppImpl {
 
   void handle_action(Action a) {
     switch (a) {
-      case Action::TogglePlay: controller->set_playing(!controller->playing()); break;
+      case Action::TogglePlay:
+        controller->set_playing(!controller->playing());
+        break;
       case Action::Step:
         controller->set_playing(false);
         controller->step_once();
         break;
-      case Action::Reset: controller->reset(); break;
+      case Action::Reset:
+        controller->reset();
+        break;
       case Action::TogglePanel:
         panel.visible = !panel.visible;
         if (auto_fit) fit_view();
         break;
-      case Action::ToggleHelp: panel.show_help = !panel.show_help; break;
-      case Action::Screenshot: screenshot_requested = true; break;
-      case Action::ToggleRecord: toggle_recording(); break;
+      case Action::ToggleHelp:
+        panel.show_help = !panel.show_help;
+        break;
+      case Action::Screenshot:
+        screenshot_requested = true;
+        break;
+      case Action::ToggleRecord:
+        toggle_recording();
+        break;
       case Action::FitView:
         auto_fit = true;
         fit_view();
         break;
-      case Action::Quit: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
+      case Action::Quit:
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+        break;
     }
   }
   bool screenshot_requested = false;
@@ -197,7 +212,8 @@ struct LiveAppImpl {
     if (io.WantCaptureKeyboard) return;  // typing into a panel field
     for (const auto& b : key_bindings()) {
       if (!ImGui::IsKeyPressed(b.key, false)) continue;
-      if (auto a = action_for_key(b.key, io.KeyCtrl ? GLFW_MOD_CONTROL : 0); a && *a == b.action) handle_action(*a);
+      if (auto a = action_for_key(b.key, io.KeyCtrl ? GLFW_MOD_CONTROL : 0); a && *a == b.action)
+        handle_action(*a);
     }
   }
 
@@ -209,7 +225,9 @@ struct LiveAppImpl {
     const Vec2 mouse(io.MousePos.x * ps, io.MousePos.y * ps);
     const bool mouse_valid = ImGui::IsMousePosValid();
     if (drag != Drag::None) {
-      const bool held = drag == Drag::Pull ? io.MouseDown[0] : (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
+      const bool held = drag == Drag::Pull
+                            ? io.MouseDown[0]
+                            : (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
       if (!held || !mouse_valid) {
         if (drag == Drag::Pull) controller->end_pull();
         drag = Drag::None;
@@ -228,7 +246,8 @@ struct LiveAppImpl {
       auto_fit = false;
     }
     if (io.MouseClicked[0]) {
-      const int node = controller->nearest_node(view.to_world(mouse), kGrabRadiusPixels * ps / view.pixels_per_metre);
+      const int node = controller->nearest_node(view.to_world(mouse),
+                                                kGrabRadiusPixels * ps / view.pixels_per_metre);
       if (node >= 0) {
         controller->begin_pull(node, view.to_world(mouse));
         drag = Drag::Pull;
@@ -261,8 +280,10 @@ struct LiveAppImpl {
     }
     if (drag != Drag::None || io.WantCaptureMouse || !ImGui::IsMousePosValid()) return;
     const Vec2 mouse(io.MousePos.x * ps, io.MousePos.y * ps);
-    const int node = controller->nearest_node(view.to_world(mouse), kGrabRadiusPixels * ps / view.pixels_per_metre);
-    if (node >= 0) dl->AddCircle(screen(sim.x.segment<2>(2 * node)), 7.0f, IM_COL32(250, 170, 0, 255), 0, 2.5f);
+    const int node = controller->nearest_node(view.to_world(mouse),
+                                              kGrabRadiusPixels * ps / view.pixels_per_metre);
+    if (node >= 0)
+      dl->AddCircle(screen(sim.x.segment<2>(2 * node)), 7.0f, IM_COL32(250, 170, 0, 255), 0, 2.5f);
   }
 
   void toggle_recording() {
@@ -273,7 +294,8 @@ struct LiveAppImpl {
     std::string dir = options.record_dir;
     if (dir.empty() || std::filesystem::exists(dir)) {
       // A fresh numbered directory next to the screenshots.
-      const std::filesystem::path base = options.screenshot_dir.empty() ? "." : options.screenshot_dir;
+      const std::filesystem::path base =
+          options.screenshot_dir.empty() ? "." : options.screenshot_dir;
       for (int n = 1;; ++n) {
         char name[40];
         std::snprintf(name, sizeof name, "invfree_recording_%04d", n);
@@ -352,8 +374,9 @@ struct LiveAppImpl {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImDrawList* background = ImGui::GetBackgroundDrawList();
     background->AddCallback(disable_blending, &gl);
-    background->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(renderer->texture())),
-                         ImVec2(0, 0), display, ImVec2(0, 1), ImVec2(1, 0));
+    background->AddImage(
+        reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(renderer->texture())),
+        ImVec2(0, 0), display, ImVec2(0, 1), ImVec2(1, 0));
     background->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
     handle_keys();
     handle_mouse();
@@ -364,7 +387,8 @@ struct LiveAppImpl {
     if (req.fit_view) handle_action(Action::FitView);
     if (req.quit) handle_action(Action::Quit);
     // A new scene or mesh: show it whole (unless the user chose a view).
-    if (controller->selected_scene() != fit_scene_index || controller->settings().n_seg != fit_n_seg) {
+    if (controller->selected_scene() != fit_scene_index ||
+        controller->settings().n_seg != fit_n_seg) {
       auto_fit = true;
       fit_view();
     }
@@ -373,8 +397,9 @@ struct LiveAppImpl {
     const double ps = pixel_scale();
     const float left = panel.visible ? panel.width : 0.0f;
     draw_banners(*controller, panel,
-                 {std::max(left, static_cast<float>(L.plot.x / ps)), static_cast<float>(L.plot.y / ps),
-                  static_cast<float>((L.plot.x + L.plot.w) / ps), static_cast<float>((L.plot.y + L.plot.h) / ps)});
+                 {std::max(left, static_cast<float>(L.plot.x / ps)),
+                  static_cast<float>(L.plot.y / ps), static_cast<float>((L.plot.x + L.plot.w) / ps),
+                  static_cast<float>((L.plot.y + L.plot.h) / ps)});
     draw_grab_markers();
     ImGui::Render();
 
@@ -388,7 +413,8 @@ struct LiveAppImpl {
     // Redrawn only when something it shows changed (paused and untouched: no GL work).
     const long revision = controller->revision();
     if (revision != drawn_revision || cam.pixels_per_metre != drawn_camera.pixels_per_metre ||
-        cam.origin != drawn_camera.origin || renderer->width() != drawn_width || renderer->height() != drawn_height) {
+        cam.origin != drawn_camera.origin || renderer->width() != drawn_width ||
+        renderer->height() != drawn_height) {
       renderer->draw(render::capture_frame_state(controller->simulation()), draw_options);
       drawn_revision = revision;
       drawn_camera = cam;
@@ -411,7 +437,8 @@ struct LiveAppImpl {
     // calls below touch no simulation data; the frame's state was copied for drawing):
     // on two cores the step and llvmpipe's rasterizer then overlap instead of queueing.
     std::future<void> stepping;
-    if (controller->playing()) stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
+    if (controller->playing())
+      stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.Viewport(0, 0, w, h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -433,8 +460,8 @@ struct LiveAppImpl {
     const double dt = std::chrono::duration<double>(now - fps_start).count();
     if (dt >= 0.5) {
       char title[96];
-      std::snprintf(title, sizeof title, "invfree live: %s, %.0f frames/s", controller->settings().name.c_str(),
-                    fps_frames / dt);
+      std::snprintf(title, sizeof title, "invfree live: %s, %.0f frames/s",
+                    controller->settings().name.c_str(), fps_frames / dt);
       glfwSetWindowTitle(window, title);
       fps_frames = 0;
       fps_start = now;
@@ -466,7 +493,8 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   a.window = glfwCreateWindow(options.width, options.height, "invfree live", nullptr, nullptr);
   if (!a.window) {
-    *error = no_window_message("no OpenGL 3.3 window: " + (g_glfw_error.empty() ? std::string("unknown") : g_glfw_error));
+    *error = no_window_message("no OpenGL 3.3 window: " +
+                               (g_glfw_error.empty() ? std::string("unknown") : g_glfw_error));
     return nullptr;
   }
   glfwMakeContextCurrent(a.window);
@@ -487,7 +515,8 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   const bool software = renderer_name.find("llvmpipe") != std::string::npos ||
                         renderer_name.find("softpipe") != std::string::npos ||
                         renderer_name.find("swrast") != std::string::npos;
-  a.renderer = render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, software ? 1 : 4);
+  a.renderer =
+      render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, software ? 1 : 4);
   if (!a.renderer) {
     *error = no_window_message("the renderer could not start: " + e);
     return nullptr;
@@ -514,7 +543,8 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   void* font_data = const_cast<unsigned char*>(invfree_chart_font_begin);
   const int font_bytes = static_cast<int>(invfree_chart_font_end - invfree_chart_font_begin);
   io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kFontSize, &cfg, ranges.Data);
-  a.panel.big_font = io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kBigFontSize, &cfg, ranges.Data);
+  a.panel.big_font =
+      io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kBigFontSize, &cfg, ranges.Data);
   if (!ImGui_ImplGlfw_InitForOpenGL(a.window, true)) {
     *error = no_window_message("ImGui's GLFW backend could not start");
     return nullptr;
@@ -545,13 +575,27 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   return app;
 }
 
-void LiveApp::frame(const Injection* inject, Image* capture) { impl_->frame(inject, capture); }
-bool LiveApp::should_close() const { return glfwWindowShouldClose(impl_->window); }
-long LiveApp::frames_drawn() const { return impl_->frames; }
-LiveController& LiveApp::controller() { return *impl_->controller; }
-Vec2 LiveApp::to_window(const Vec2& world) const { return impl_->view.to_screen(world) / impl_->pixel_scale(); }
-const std::map<std::string, WidgetRect>& LiveApp::widget_rects() const { return impl_->panel.rects; }
-const std::vector<std::string>& LiveApp::messages() const { return impl_->messages; }
+void LiveApp::frame(const Injection* inject, Image* capture) {
+  impl_->frame(inject, capture);
+}
+bool LiveApp::should_close() const {
+  return glfwWindowShouldClose(impl_->window);
+}
+long LiveApp::frames_drawn() const {
+  return impl_->frames;
+}
+LiveController& LiveApp::controller() {
+  return *impl_->controller;
+}
+Vec2 LiveApp::to_window(const Vec2& world) const {
+  return impl_->view.to_screen(world) / impl_->pixel_scale();
+}
+const std::map<std::string, WidgetRect>& LiveApp::widget_rects() const {
+  return impl_->panel.rects;
+}
+const std::vector<std::string>& LiveApp::messages() const {
+  return impl_->messages;
+}
 
 int run_live(const LiveOptions& options) {
   std::string error;
@@ -567,7 +611,8 @@ int run_live(const LiveOptions& options) {
     const bool final_frame = options.frames > 0 && f + 1 == options.frames;
     app->frame(nullptr, want_last && final_frame ? &last : nullptr);
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (want_last) {
     if (last.rgba.empty()) app->frame(nullptr, &last);  // closed early: this frame then
     if (const std::string e = write_png(options.screenshot_file, last); !e.empty()) {
@@ -582,7 +627,8 @@ int run_live(const LiveOptions& options) {
     const SceneDef& s = lc.settings();
     const long steps = lc.steps_total();
     std::printf(
-        "live bench: %ld frames in %.2f s = %.1f frames/s (scene %s, n_seg %d, h %g, %d step(s)/frame; %ld steps, "
+        "live bench: %ld frames in %.2f s = %.1f frames/s (scene %s, n_seg %d, h %g, %d "
+        "step(s)/frame; %ld steps, "
         "%.2f ms/step, %.2f ms/frame)\n",
         frames, seconds, frames / seconds, s.name.c_str(), s.n_seg, s.h, lc.steps_per_frame, steps,
         steps ? lc.step_ms_total() / steps : 0.0, 1e3 * seconds / std::max<long>(1, frames));

@@ -32,14 +32,14 @@ constexpr int kDefaultMaxSegments = 84;
 struct LiveOptions {
   std::vector<SceneChoice> scenes;  // the scene picker; not empty
   int selected = 0;
-  int frames = 0;                   // > 0: run this many frames, then close
-  std::string screenshot_file;      // write the last frame here (with frames > 0)
+  int frames = 0;                    // > 0: run this many frames, then close
+  std::string screenshot_file;       // write the last frame here (with frames > 0)
   std::string screenshot_dir = ".";  // Ctrl+P / the button: DIR/invfree_NNNN.png
-  std::string record_dir;           // record from the first frame on
-  bool bench = false;               // print frames/s at the end
-  bool paused = false;              // start paused
-  bool hide_panel = false;          // start with the panel hidden (Tab shows it)
-  bool vsync = true;                // off for --frames and --bench
+  std::string record_dir;            // record from the first frame on
+  bool bench = false;                // print frames/s at the end
+  bool paused = false;               // start paused
+  bool hide_panel = false;           // start with the panel hidden (Tab shows it)
+  bool vsync = true;                 // off for --frames and --bench
   int width = 1280, height = 720;
   int steps_per_frame = 1;
   int max_segments = kDefaultMaxSegments;

@@ -6,7 +6,8 @@
 
 namespace invfree::live {
 
-LiveController::LiveController(std::vector<SceneChoice> scenes, int selected) : scenes_(std::move(scenes)) {
+LiveController::LiveController(std::vector<SceneChoice> scenes, int selected)
+    : scenes_(std::move(scenes)) {
   if (scenes_.empty()) throw std::invalid_argument("LiveController: no scene");
   selected_ = std::clamp(selected, 0, static_cast<int>(scenes_.size()) - 1);
   restart(scenes_[selected_].scene);
@@ -32,7 +33,8 @@ void LiveController::measure() {
   const auto [lo, hi] = std::minmax_element(det_f_.begin(), det_f_.end());
   stats_.min_det_f = *lo;
   stats_.max_det_f = *hi;
-  stats_.inverted = static_cast<int>(std::count_if(det_f_.begin(), det_f_.end(), [](double d) { return !(d > 0.0); }));
+  stats_.inverted = static_cast<int>(
+      std::count_if(det_f_.begin(), det_f_.end(), [](double d) { return !(d > 0.0); }));
 }
 
 int LiveController::advance_frame() {
@@ -50,8 +52,8 @@ bool LiveController::step_once() {
   const StepReport r = step(sim_);
   if (r.status != StepStatus::Ok) {
     playing_ = false;
-    banner = "Step " + std::to_string(sim_.step_count + 1) + " failed (" + step_status_name(r.status) +
-             (r.message.empty() ? "" : ": " + r.message) +
+    banner = "Step " + std::to_string(sim_.step_count + 1) + " failed (" +
+             step_status_name(r.status) + (r.message.empty() ? "" : ": " + r.message) +
              "). Paused with the last good state; change a setting, or press R to reset.";
     return false;
   }
@@ -77,18 +79,21 @@ bool LiveController::apply(const SceneDef& next) {
     note = "not applied: " + e;
     return false;
   }
-  if (!model_allows_inversion(next.model) && model_allows_inversion(sim_.scene.model) && stats_.inverted > 0) {
+  if (!model_allows_inversion(next.model) && model_allows_inversion(sim_.scene.model) &&
+      stats_.inverted > 0) {
     note = std::string("not applied: ") + model_name(next.model) + " needs det F > 0, but " +
            std::to_string(stats_.inverted) + " triangle(s) are inverted now; press R (reset) first";
     return false;
   }
   const SceneDef& old = sim_.scene;
-  const bool rebuild = old.side != next.side || old.n_seg != next.n_seg || old.density != next.density ||
-                       old.mass != next.mass || old.jitter != next.jitter || old.seed != next.seed ||
+  const bool rebuild = old.side != next.side || old.n_seg != next.n_seg ||
+                       old.density != next.density || old.mass != next.mass ||
+                       old.jitter != next.jitter || old.seed != next.seed ||
                        old.has_ceiling != next.has_ceiling;
   if (rebuild) {
     restart(next);
-    note = "mesh rebuilt (n_seg = " + std::to_string(next.n_seg) + "); restarted from the initial state";
+    note = "mesh rebuilt (n_seg = " + std::to_string(next.n_seg) +
+           "); restarted from the initial state";
     return true;
   }
   update_scene(sim_, next);

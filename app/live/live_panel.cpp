@@ -36,11 +36,13 @@ std::string printf_safe(const std::string& s) {
 
 // A log slider over a material parameter: drags a position in [0, 1] (LogSlider) and
 // shows the value itself. Returns true with *value set while it is being moved.
-bool log_slider(PanelState& ps, const char* id, const char* label, const LogSlider& map, double current,
-                double* value) {
+bool log_slider(PanelState& ps, const char* id, const char* label, const LogSlider& map,
+                double current, double* value) {
   float t = static_cast<float>(map.position(current));
-  const std::string text = printf_safe(std::string(label) + " = " + render::format_si(current, "Pa"));
-  const bool changed = ImGui::SliderFloat(id, &t, 0.0f, 1.0f, text.c_str(), ImGuiSliderFlags_NoInput);
+  const std::string text =
+      printf_safe(std::string(label) + " = " + render::format_si(current, "Pa"));
+  const bool changed =
+      ImGui::SliderFloat(id, &t, 0.0f, 1.0f, text.c_str(), ImGuiSliderFlags_NoInput);
   remember(ps, id + 2);  // skip the "##"
   if (changed) *value = map.value(t);
   return changed;
@@ -48,11 +50,14 @@ bool log_slider(PanelState& ps, const char* id, const char* label, const LogSlid
 
 // A double slider (ImGui's own, linear or logarithmic) whose Ctrl+click typed value may
 // leave the range: it is then clamped with a note instead of applied.
-bool clamped_slider(LiveController& lc, PanelState& ps, const char* label, const char* name, double* v,
-                    Range range, const char* unit, const char* format, bool logarithmic) {
+bool clamped_slider(LiveController& lc, PanelState& ps, const char* label, const char* name,
+                    double* v, Range range, const char* unit, const char* format,
+                    bool logarithmic) {
   double edit = *v;
-  const ImGuiSliderFlags flags = logarithmic ? ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat : 0;
-  if (!ImGui::SliderScalar(label, ImGuiDataType_Double, &edit, &range.lo, &range.hi, format, flags)) return false;
+  const ImGuiSliderFlags flags =
+      logarithmic ? ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat : 0;
+  if (!ImGui::SliderScalar(label, ImGuiDataType_Double, &edit, &range.lo, &range.hi, format, flags))
+    return false;
   remember(ps, name);
   const Clamped c = clamp_to_range(edit, *v, range, name, unit);
   if (!c.note.empty()) lc.note = c.note;
@@ -145,7 +150,8 @@ void material_section(LiveController& lc, PanelState& ps) {
   young_poisson_from_lame(next.lame, &E, &nu);
   ImGui::SetNextItemWidth(110);
   double e_in = E;
-  const bool e_enter = ImGui::InputDouble("E (Pa)", &e_in, 0.0, 0.0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool e_enter =
+      ImGui::InputDouble("E (Pa)", &e_in, 0.0, 0.0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
   remember(ps, "E");
   if ((e_enter || ImGui::IsItemDeactivatedAfterEdit()) && e_in != E) {
     const MaterialEdit e = edit_young(next.lame, e_in);
@@ -156,7 +162,8 @@ void material_section(LiveController& lc, PanelState& ps) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   double nu_in = nu;
-  const bool nu_enter = ImGui::InputDouble("\xce\xbd", &nu_in, 0.0, 0.0, "%.4f", ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool nu_enter = ImGui::InputDouble("\xce\xbd", &nu_in, 0.0, 0.0, "%.4f",
+                                           ImGuiInputTextFlags_EnterReturnsTrue);
   remember(ps, "nu");
   if ((nu_enter || ImGui::IsItemDeactivatedAfterEdit()) && nu_in != nu) {
     const MaterialEdit e = edit_poisson(next.lame, nu_in);
@@ -168,8 +175,10 @@ void material_section(LiveController& lc, PanelState& ps) {
 
 void solver_section(LiveController& lc, PanelState& ps) {
   SceneDef next = lc.settings();
-  if (clamped_slider(lc, ps, "h (s)", "h", &next.h, kTimeStepRange, "s", "%.4g", true)) apply(lc, next);
-  if (clamped_slider(lc, ps, "Newton tol (m/s)", "tol", &next.tol, kTolRange, "m/s", "%.2g", true)) apply(lc, next);
+  if (clamped_slider(lc, ps, "h (s)", "h", &next.h, kTimeStepRange, "s", "%.4g", true))
+    apply(lc, next);
+  if (clamped_slider(lc, ps, "Newton tol (m/s)", "tol", &next.tol, kTolRange, "m/s", "%.2g", true))
+    apply(lc, next);
   ImGui::SliderInt("steps / frame", &lc.steps_per_frame, 1, 10, "%d", ImGuiSliderFlags_AlwaysClamp);
 
   // n_seg rebuilds the mesh: applied when the slider is released, not at every pixel.
@@ -181,37 +190,43 @@ void solver_section(LiveController& lc, PanelState& ps) {
   if (ImGui::IsItemDeactivated()) {
     ps.n_seg_edit = -1;
     if (n != next.n_seg) {
-      const Clamped c = clamp_to_range(n, next.n_seg, {double(kMinSegments), double(slider_max)}, "n_seg", "");
+      const Clamped c =
+          clamp_to_range(n, next.n_seg, {double(kMinSegments), double(slider_max)}, "n_seg", "");
       next.n_seg = static_cast<int>(c.value);
       apply(lc, next);
-      if (!c.note.empty()) lc.note = c.note + " (the largest mesh measured to run at 30 frames/s here)";
+      if (!c.note.empty())
+        lc.note = c.note + " (the largest mesh measured to run at 30 frames/s here)";
     }
   } else if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("rebuilds the mesh and restarts when released (max %d: still >= 30 frames/s)", slider_max);
+    ImGui::SetTooltip("rebuilds the mesh and restarts when released (max %d: still >= 30 frames/s)",
+                      slider_max);
   }
 }
 
 void contact_section(LiveController& lc, PanelState& ps) {
   SceneDef next = lc.settings();
   ImGui::BeginDisabled(!next.has_ground);
-  if (clamped_slider(lc, ps, "friction", "friction", &next.friction, kFrictionRange, "", "%.3f", false))
+  if (clamped_slider(lc, ps, "friction", "friction", &next.friction, kFrictionRange, "", "%.3f",
+                     false))
     apply(lc, next);
   ImGui::EndDisabled();
   ImGui::BeginDisabled(!next.has_ceiling);
   double speed = -next.ceiling_velocity;
-  if (clamped_slider(lc, ps, "ceiling speed (m/s)", "ceiling speed", &speed, kCeilingSpeedRange, "m/s", "%.3f",
-                     false)) {
+  if (clamped_slider(lc, ps, "ceiling speed (m/s)", "ceiling speed", &speed, kCeilingSpeedRange,
+                     "m/s", "%.3f", false)) {
     next.ceiling_velocity = -speed;
     apply(lc, next);
   }
   const SceneDef& original = lc.scenes()[lc.selected_scene()].scene;
-  const Range stop = ceiling_stop_range(next.ground_y, next.has_ground, original.ceiling_y, next.side);
-  if (clamped_slider(lc, ps, "ceiling stop (m)", "ceiling stop", &next.ceiling_stop, stop, "m", "%.3f", false))
+  const Range stop =
+      ceiling_stop_range(next.ground_y, next.has_ground, original.ceiling_y, next.side);
+  if (clamped_slider(lc, ps, "ceiling stop (m)", "ceiling stop", &next.ceiling_stop, stop, "m",
+                     "%.3f", false))
     apply(lc, next);
   ImGui::EndDisabled();
   if (!next.has_ceiling) ImGui::TextColored(kDimColor, "(this scene has no ceiling)");
-  clamped_slider(lc, ps, "grab spring (N/m)", "grab spring", &lc.pull_stiffness, kPullStiffnessRange, "N/m",
-                 "%.3g", true);
+  clamped_slider(lc, ps, "grab spring (N/m)", "grab spring", &lc.pull_stiffness,
+                 kPullStiffnessRange, "N/m", "%.3g", true);
 }
 
 void stats_section(const LiveController& lc, PanelState& ps) {
@@ -221,11 +236,13 @@ void stats_section(const LiveController& lc, PanelState& ps) {
   ImGui::Text("step %ld    t = %.3f s", sim.step_count, sim.time);
   if (lc.has_stepped()) {
     const StepReport& r = lc.last_report();
-    ImGui::Text("%.2f ms/step    Newton %d it    residual %.2e m/s", r.wall_ms, r.newton_iterations, r.residual);
+    ImGui::Text("%.2f ms/step    Newton %d it    residual %.2e m/s", r.wall_ms, r.newton_iterations,
+                r.residual);
   } else {
     ImGui::TextColored(kDimColor, "no step yet");
   }
-  const ImVec4 inverted_color = st.inverted > 0 ? ImVec4(0.2f, 0.9f, 0.3f, 1.0f) : ImGui::GetStyleColorVec4(ImGuiCol_Text);
+  const ImVec4 inverted_color =
+      st.inverted > 0 ? ImVec4(0.2f, 0.9f, 0.3f, 1.0f) : ImGui::GetStyleColorVec4(ImGuiCol_Text);
   ImGui::Text("det F in [%.4f, %.4f]", st.min_det_f, st.max_det_f);
   ImGui::SameLine();
   ImGui::TextColored(inverted_color, "  %d inverted", st.inverted);
@@ -236,17 +253,18 @@ void stats_section(const LiveController& lc, PanelState& ps) {
   const auto ms = lc.ms_history().values();
   if (!ms.empty()) {
     const float mean = std::accumulate(ms.begin(), ms.end(), 0.0f) / ms.size();
-    std::snprintf(overlay, sizeof overlay, "ms/step: last %.2f, mean %.2f, max %.2f", ms.back(), mean,
-                  lc.ms_history().max());
+    std::snprintf(overlay, sizeof overlay, "ms/step: last %.2f, mean %.2f, max %.2f", ms.back(),
+                  mean, lc.ms_history().max());
   } else {
     std::snprintf(overlay, sizeof overlay, "ms/step");
   }
-  ImGui::PlotLines("##ms", ms.data(), static_cast<int>(ms.size()), 0, overlay, 0.0f, FLT_MAX, ImVec2(plot_w, 48));
+  ImGui::PlotLines("##ms", ms.data(), static_cast<int>(ms.size()), 0, overlay, 0.0f, FLT_MAX,
+                   ImVec2(plot_w, 48));
   remember(ps, "ms_plot");
   const auto det = lc.min_det_history().values();
   std::snprintf(overlay, sizeof overlay, "min det F over the last %zu steps", det.size());
-  ImGui::PlotLines("##mindet", det.data(), static_cast<int>(det.size()), 0, overlay, FLT_MAX, FLT_MAX,
-                   ImVec2(plot_w, 48));
+  ImGui::PlotLines("##mindet", det.data(), static_cast<int>(det.size()), 0, overlay, FLT_MAX,
+                   FLT_MAX, ImVec2(plot_w, 48));
   remember(ps, "min_det_plot");
 }
 
@@ -307,24 +325,27 @@ void draw_banners(const LiveController& lc, const PanelState& ps, const WidgetRe
     const ImVec2 sz = f->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, wrap, lc.banner.c_str());
     const ImVec2 a(cx - 0.5f * sz.x - 12.0f, y), b(cx + 0.5f * sz.x + 12.0f, y + sz.y + 12.0f);
     dl->AddRectFilled(a, b, IM_COL32(170, 20, 30, 230), 6.0f);
-    dl->AddText(f, ImGui::GetFontSize(), ImVec2(a.x + 12.0f, a.y + 6.0f), IM_COL32(255, 255, 255, 255),
-                lc.banner.c_str(), nullptr, wrap);
+    dl->AddText(f, ImGui::GetFontSize(), ImVec2(a.x + 12.0f, a.y + 6.0f),
+                IM_COL32(255, 255, 255, 255), lc.banner.c_str(), nullptr, wrap);
   }
   if (ps.recording) {
     const ImVec2 p(area.x1 - 90.0f, area.y0 + 24.0f);
     dl->AddCircleFilled(p, 9.0f, IM_COL32(220, 20, 20, 255));
-    dl->AddText(ImVec2(p.x + 16.0f, p.y - 0.5f * ImGui::GetFontSize()), IM_COL32(220, 20, 20, 255), "REC");
+    dl->AddText(ImVec2(p.x + 16.0f, p.y - 0.5f * ImGui::GetFontSize()), IM_COL32(220, 20, 20, 255),
+                "REC");
   }
 }
 
 void draw_help_overlay(PanelState& ps) {
   if (!ps.show_help) return;
   const ImGuiViewport* vp = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + 0.5f * vp->WorkSize.x, vp->WorkPos.y + 0.5f * vp->WorkSize.y),
-                          ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowPos(
+      ImVec2(vp->WorkPos.x + 0.5f * vp->WorkSize.x, vp->WorkPos.y + 0.5f * vp->WorkSize.y),
+      ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::SetNextWindowBgAlpha(1.0f);
   ImGui::Begin("Keys and mouse (F1 closes)", &ps.show_help,
-               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoCollapse);
   if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) {
     for (const auto& b : key_bindings()) {
       ImGui::TableNextRow();

@@ -23,10 +23,10 @@ struct PanelState {
   bool show_help = false;
   float width = 390.0f;  // pixels, at font scale 1
   int max_segments = kDefaultMaxSegments;
-  int n_seg_edit = -1;   // the n_seg slider's value while it is being dragged
+  int n_seg_edit = -1;  // the n_seg slider's value while it is being dragged
   bool recording = false;
-  std::string last_output;  // e.g. "saved shots/invfree_0003.png"
-  ImFont* big_font = nullptr;  // banners
+  std::string last_output;                  // e.g. "saved shots/invfree_0003.png"
+  ImFont* big_font = nullptr;               // banners
   std::map<std::string, WidgetRect> rects;  // this frame's widget rectangles
 };
 

@@ -22,7 +22,9 @@ std::string range_text(Range r, const char* unit) {
 }
 
 // c(nu) = lambda / E = nu / ((1 + nu)(1 - 2 nu)), increasing on [0, 0.5).
-double lambda_per_young(double nu) { return nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
+double lambda_per_young(double nu) {
+  return nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+}
 
 // The largest nu in [0, 0.5) with lambda_per_young(nu) <= c (bisection; c >= 0).
 double poisson_for_lambda_per_young(double c) {
@@ -44,10 +46,12 @@ MaterialEdit from_young_poisson(double E, double nu, std::string note) {
 
 }  // namespace
 
-Clamped clamp_to_range(double requested, double current, Range range, const char* name, const char* unit) {
+Clamped clamp_to_range(double requested, double current, Range range, const char* name,
+                       const char* unit) {
   char buf[192];
   if (!std::isfinite(requested)) {
-    std::snprintf(buf, sizeof buf, "%s: not a finite number, not applied (kept %.4g)", name, current);
+    std::snprintf(buf, sizeof buf, "%s: not a finite number, not applied (kept %.4g)", name,
+                  current);
     return {current, buf};
   }
   const double v = std::clamp(requested, range.lo, range.hi);
@@ -92,7 +96,8 @@ MaterialEdit edit_poisson(const Lame& current, double poisson) {
   const Clamped p = clamp_to_range(poisson, nu0, r, "nu", "");
   if (!std::isfinite(poisson)) return {current, p.note};
   std::string note = p.note;
-  if (!note.empty() && r.hi < kPoissonRange.hi) note += " (the range of nu at E = " + format_value(E) + ")";
+  if (!note.empty() && r.hi < kPoissonRange.hi)
+    note += " (the range of nu at E = " + format_value(E) + ")";
   return from_young_poisson(E, p.value, note);
 }
 

@@ -48,7 +48,7 @@ struct MaterialEdit {
 
 MaterialEdit edit_mu(const Lame& current, double mu);
 MaterialEdit edit_lambda(const Lame& current, double lambda);
-MaterialEdit edit_young(const Lame& current, double youngs);    // keeps nu
+MaterialEdit edit_young(const Lame& current, double youngs);     // keeps nu
 MaterialEdit edit_poisson(const Lame& current, double poisson);  // keeps E
 
 // Range of the ceiling's stop height for a scene: from a tenth of the side above the

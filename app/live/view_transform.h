@@ -12,7 +12,7 @@ struct WorldBox {
 };
 
 struct ViewTransform {
-  Vec2 center = Vec2::Zero();    // world point at the middle of the viewport
+  Vec2 center = Vec2::Zero();  // world point at the middle of the viewport
   double pixels_per_metre = 300.0;
   double width = 1280.0, height = 720.0;  // viewport, pixels
 

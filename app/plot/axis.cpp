@@ -83,7 +83,9 @@ std::vector<Tick> axis_ticks(const AxisRange& r) {
     }
     // A range inside one decade may hold no 1, 2 or 5: label every minor tick then, and
     // if even that gives fewer than two labels, use linear 1-2-5 steps on the log axis.
-    auto labelled = [&] { return std::count_if(ticks.begin(), ticks.end(), [](const Tick& t) { return t.labelled; }); };
+    auto labelled = [&] {
+      return std::count_if(ticks.begin(), ticks.end(), [](const Tick& t) { return t.labelled; });
+    };
     if (labelled() < 2 && minor_ticks)
       for (Tick& t : ticks) {
         t.labelled = true;
@@ -98,7 +100,9 @@ std::vector<Tick> axis_ticks(const AxisRange& r) {
       AxisRange linear{false, std::pow(10.0, r.lo), std::pow(10.0, r.hi)};
       std::vector<Tick> fine = axis_ticks(linear);
       for (Tick& t : fine) t.major = false;
-      fine.erase(std::remove_if(fine.begin(), fine.end(), [](const Tick& t) { return !(t.value > 0.0); }), fine.end());
+      fine.erase(
+          std::remove_if(fine.begin(), fine.end(), [](const Tick& t) { return !(t.value > 0.0); }),
+          fine.end());
       for (const Tick& t : ticks)
         if (t.major) {
           Tick d = t;
@@ -118,7 +122,8 @@ std::vector<Tick> axis_ticks(const AxisRange& r) {
       step = m * mag;
       break;
     }
-  const long i0 = static_cast<long>(std::ceil(r.lo / step - 1e-9)), i1 = static_cast<long>(std::floor(r.hi / step + 1e-9));
+  const long i0 = static_cast<long>(std::ceil(r.lo / step - 1e-9)),
+             i1 = static_cast<long>(std::floor(r.hi / step + 1e-9));
   for (long i = i0; i <= i1; ++i) {
     Tick t;
     t.value = i * step;

@@ -11,7 +11,7 @@ namespace invfree {
 
 struct AxisRange {
   bool log = false;
-  double lo = 0.0, hi = 1.0;  // in axis space: log10 of the value on a log axis
+  double lo = 0.0, hi = 1.0;       // in axis space: log10 of the value on a log axis
   double to_axis(double v) const;  // data value -> axis space (NaN when not plottable)
 };
 
@@ -33,8 +33,12 @@ std::string format_tick(double value);
 struct PlotFrame {
   double left, top, right, bottom;
   AxisRange x, y;
-  double to_px_x(double v) const { return left + (x.to_axis(v) - x.lo) / (x.hi - x.lo) * (right - left); }
-  double to_px_y(double v) const { return bottom - (y.to_axis(v) - y.lo) / (y.hi - y.lo) * (bottom - top); }
+  double to_px_x(double v) const {
+    return left + (x.to_axis(v) - x.lo) / (x.hi - x.lo) * (right - left);
+  }
+  double to_px_y(double v) const {
+    return bottom - (y.to_axis(v) - y.lo) / (y.hi - y.lo) * (bottom - top);
+  }
   bool plottable(double vx, double vy) const;
 };
 

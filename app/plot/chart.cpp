@@ -1,10 +1,11 @@
+#include "app/plot/chart.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "app/plot/chart.h"
-#include "app/plot/raster.h"
 #include "app/plot/axis.h"
+#include "app/plot/raster.h"
 
 namespace invfree {
 
@@ -17,13 +18,15 @@ constexpr Rgb kGridMajor{0.85f, 0.85f, 0.87f};
 constexpr Rgb kGridMinor{0.94f, 0.94f, 0.95f};
 
 MarkerShape marker_for(size_t index) {
-  static constexpr MarkerShape shapes[] = {MarkerShape::Circle, MarkerShape::Square, MarkerShape::Diamond,
-                                           MarkerShape::TriangleUp, MarkerShape::TriangleDown};
+  static constexpr MarkerShape shapes[] = {MarkerShape::Circle, MarkerShape::Square,
+                                           MarkerShape::Diamond, MarkerShape::TriangleUp,
+                                           MarkerShape::TriangleDown};
   return shapes[index % 5];
 }
 
 // "10" with a superscript exponent; returns its width. Draws only when `image` is set.
-double power_of_ten_label(Image* image, int exponent, double x, double y, double size, Align align) {
+double power_of_ten_label(Image* image, int exponent, double x, double y, double size,
+                          Align align) {
   const std::string base = "10";
   const std::string exp = (exponent < 0 ? "\u2212" : "") + std::to_string(std::abs(exponent));
   const double small = size * 0.72;
@@ -31,7 +34,8 @@ double power_of_ten_label(Image* image, int exponent, double x, double y, double
   if (image) {
     const double left = align == Align::Left ? x : align == Align::Center ? x - w / 2.0 : x - w;
     draw_text(*image, base, left, y, size, kInk);
-    draw_text(*image, exp, left + text_width(base, size) + size * 0.05, y - size * 0.42, small, kInk);
+    draw_text(*image, exp, left + text_width(base, size) + size * 0.05, y - size * 0.42, small,
+              kInk);
   }
   return w;
 }
@@ -66,7 +70,8 @@ Image render_chart(const ChartSpec& spec) {
   const double legend_w = has_legend ? std::clamp(width * 0.25, 160.0 * u, 400.0 * u) : 0.0;
   double y_tick_w = 0.0;
   for (const Tick& t : yticks)
-    if (t.labelled) y_tick_w = std::max(y_tick_w, tick_label(nullptr, t, 0, 0, tick_size, Align::Right));
+    if (t.labelled)
+      y_tick_w = std::max(y_tick_w, tick_label(nullptr, t, 0, 0, tick_size, Align::Right));
   const std::vector<std::string> title_lines = wrap_text(spec.title, title_size, width - 40 * u);
   const double top = 24 * u + title_lines.size() * title_size * 1.2 + 12 * u;
   const double left = 24 * u + label_size * 1.4 + y_tick_w + 12 * u;
@@ -75,8 +80,8 @@ Image render_chart(const ChartSpec& spec) {
   const PlotFrame frame{left, top, right, bottom, xr, yr};
 
   for (size_t i = 0; i < title_lines.size(); ++i)
-    draw_text(img, title_lines[i], width / 2.0, 24 * u + title_size * (1.2 * i + 0.85), title_size, kInk,
-              Align::Center);
+    draw_text(img, title_lines[i], width / 2.0, 24 * u + title_size * (1.2 * i + 0.85), title_size,
+              kInk, Align::Center);
 
   // Grid, then frame, ticks and labels.
   for (const Tick& t : xticks) {
@@ -92,16 +97,20 @@ Image render_chart(const ChartSpec& spec) {
     const double px = frame.to_px_x(t.value);
     const double len = (t.major ? 8.0 : 4.5) * u;
     draw_line(img, {px, bottom}, {px, bottom + len}, 1.2 * u, kInk);
-    if (t.labelled) tick_label(&img, t, px, bottom + len + tick_size * 1.05, tick_size, Align::Center);
+    if (t.labelled)
+      tick_label(&img, t, px, bottom + len + tick_size * 1.05, tick_size, Align::Center);
   }
   for (const Tick& t : yticks) {
     const double py = frame.to_px_y(t.value);
     const double len = (t.major ? 8.0 : 4.5) * u;
     draw_line(img, {left - len, py}, {left, py}, 1.2 * u, kInk);
-    if (t.labelled) tick_label(&img, t, left - len - 4 * u, py + tick_size * 0.35, tick_size, Align::Right);
+    if (t.labelled)
+      tick_label(&img, t, left - len - 4 * u, py + tick_size * 0.35, tick_size, Align::Right);
   }
-  draw_text(img, spec.x_label, (left + right) / 2.0, height - 20 * u, label_size, kInk, Align::Center);
-  draw_text_vertical(img, spec.y_label, 20 * u + label_size, (top + bottom) / 2.0, label_size, kInk);
+  draw_text(img, spec.x_label, (left + right) / 2.0, height - 20 * u, label_size, kInk,
+            Align::Center);
+  draw_text_vertical(img, spec.y_label, 20 * u + label_size, (top + bottom) / 2.0, label_size,
+                     kInk);
 
   // Series: lines first (broken at skipped points), then markers on top.
   const double line_w = 2.2 * u, marker_r = 5.0 * u;
@@ -123,7 +132,8 @@ Image render_chart(const ChartSpec& spec) {
     if (!s.markers) continue;
     for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
       if (frame.plottable(s.x[i], s.y[i]))
-        draw_marker(img, {frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])}, marker_r, marker_for(k), s.color, kInk);
+        draw_marker(img, {frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])}, marker_r, marker_for(k),
+                    s.color, kInk);
   }
 
   // Legend and notes.
@@ -137,9 +147,11 @@ Image render_chart(const ChartSpec& spec) {
       const auto lines = wrap_text(s.label, legend_size, lw - swatch - 10 * u);
       const double cy = ly - legend_size * 0.35;
       if (s.lines) draw_line(img, {lx, cy}, {lx + swatch, cy}, line_w, s.color);
-      if (s.markers) draw_marker(img, {lx + swatch / 2.0, cy}, marker_r, marker_for(k), s.color, kInk);
+      if (s.markers)
+        draw_marker(img, {lx + swatch / 2.0, cy}, marker_r, marker_for(k), s.color, kInk);
       for (size_t i = 0; i < lines.size(); ++i)
-        draw_text(img, lines[i], lx + swatch + 10 * u, ly + i * legend_size * 1.25, legend_size, kInk);
+        draw_text(img, lines[i], lx + swatch + 10 * u, ly + i * legend_size * 1.25, legend_size,
+                  kInk);
       ly += (lines.size() * 1.25 + 0.6) * legend_size;
     }
     if (!spec.notes.empty()) ly += legend_size * 0.8;

@@ -10,9 +10,9 @@
 namespace invfree {
 
 struct Glyph {
-  int width = 0, height = 0;  // coverage bitmap size
-  int x_offset = 0, y_offset = 0;  // bitmap top-left relative to the pen on the baseline
-  double advance = 0.0;  // pen advance in pixels
+  int width = 0, height = 0;           // coverage bitmap size
+  int x_offset = 0, y_offset = 0;      // bitmap top-left relative to the pen on the baseline
+  double advance = 0.0;                // pen advance in pixels
   std::vector<std::uint8_t> coverage;  // width * height, 0..255
 };
 

@@ -13,7 +13,8 @@ namespace invfree {
 namespace {
 
 void append_bytes(void* context, void* data, int size) {
-  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                             static_cast<size_t>(size));
 }
 
 }  // namespace
@@ -21,8 +22,8 @@ void append_bytes(void* context, void* data, int size) {
 std::string write_png(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
-    return path + ": cannot write an empty or malformed image (" + std::to_string(image.width) + "x" +
-           std::to_string(image.height) + ")";
+    return path + ": cannot write an empty or malformed image (" + std::to_string(image.width) +
+           "x" + std::to_string(image.height) + ")";
   std::string png;
   if (!stbi_write_png_to_func(append_bytes, &png, image.width, image.height, 4, image.rgba.data(),
                               image.width * 4))

@@ -84,7 +84,8 @@ std::vector<Point2> marker_polygon(Point2 c, double r, MarkerShape shape) {
               {c.x + s * 0.866, c.y + sign * s * 0.5},
               {c.x - s * 0.866, c.y + sign * s * 0.5}};
     }
-    case MarkerShape::Circle: break;
+    case MarkerShape::Circle:
+      break;
   }
   return {};
 }
@@ -172,7 +173,8 @@ Image make_image(int width, int height, Rgb background) {
   img.width = std::max(0, width);
   img.height = std::max(0, height);
   img.rgba.resize(static_cast<size_t>(img.width) * img.height * 4);
-  const std::uint8_t r = to_byte(background.r), g = to_byte(background.g), b = to_byte(background.b);
+  const std::uint8_t r = to_byte(background.r), g = to_byte(background.g),
+                     b = to_byte(background.b);
   for (size_t i = 0; i < img.rgba.size(); i += 4) {
     img.rgba[i] = r;
     img.rgba[i + 1] = g;
@@ -215,7 +217,8 @@ void fill_rect(Image& image, double x0, double y0, double x1, double y1, Rgb col
   }
 }
 
-void stroke_rect(Image& image, double x0, double y0, double x1, double y1, double width, Rgb color) {
+void stroke_rect(Image& image, double x0, double y0, double x1, double y1, double width,
+                 Rgb color) {
   const double w = width / 2.0;
   fill_rect(image, x0 - w, y0 - w, x1 + w, y0 + w, color);
   fill_rect(image, x0 - w, y1 - w, x1 + w, y1 + w, color);
@@ -243,9 +246,11 @@ void draw_polyline(Image& image, const std::vector<Point2>& points, double width
   for (size_t s = 0; s < segments; ++s) {
     const Point2 a = points[s], b = points[std::min(s + 1, points.size() - 1)];
     const int x0 = std::max(mask.x0, static_cast<int>(std::floor(std::min(a.x, b.x) - half - 1.0)));
-    const int x1 = std::min(mask.x0 + mask.w - 1, static_cast<int>(std::ceil(std::max(a.x, b.x) + half + 1.0)));
+    const int x1 = std::min(mask.x0 + mask.w - 1,
+                            static_cast<int>(std::ceil(std::max(a.x, b.x) + half + 1.0)));
     const int y0 = std::max(mask.y0, static_cast<int>(std::floor(std::min(a.y, b.y) - half - 1.0)));
-    const int y1 = std::min(mask.y0 + mask.h - 1, static_cast<int>(std::ceil(std::max(a.y, b.y) + half + 1.0)));
+    const int y1 = std::min(mask.y0 + mask.h - 1,
+                            static_cast<int>(std::ceil(std::max(a.y, b.y) + half + 1.0)));
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
         const double d = segment_distance({x + 0.5, y + 0.5}, a, b);
@@ -329,7 +334,8 @@ void fill_mesh(Image& image, const std::vector<Point2>& nodes,
           const int l = (k + 1) % 3;
           e[k] = (xs[l] - xs[k]) * (j - ys[k]) - (ys[l] - ys[k]) * (i - xs[k]);
         }
-        const bool in = (e[0] >= 0 && e[1] >= 0 && e[2] >= 0) || (e[0] <= 0 && e[1] <= 0 && e[2] <= 0);
+        const bool in =
+            (e[0] >= 0 && e[1] >= 0 && e[2] >= 0) || (e[0] <= 0 && e[1] <= 0 && e[2] <= 0);
         if (in) owner[static_cast<size_t>(j) * sw + i] = static_cast<int>(t);
       }
   }
@@ -347,7 +353,8 @@ void fill_mesh(Image& image, const std::vector<Point2>& nodes,
           ++n;
         }
       if (n == 0) continue;
-      const Rgb avg{static_cast<float>(r / n), static_cast<float>(g / n), static_cast<float>(b / n)};
+      const Rgb avg{static_cast<float>(r / n), static_cast<float>(g / n),
+                    static_cast<float>(b / n)};
       blend_pixel(image, box.x0 + x, box.y0 + y, avg, static_cast<double>(n) / (S * S));
     }
 }
@@ -365,7 +372,9 @@ double text_width(const std::string& utf8, double size_px) {
 void draw_text(Image& image, const std::string& utf8, double x, double y, double size_px, Rgb color,
                Align align) {
   const TextMask m = render_text_mask(utf8, size_px);
-  const double shift = align == Align::Left ? 0.0 : align == Align::Center ? m.advance / 2.0 : m.advance;
+  const double shift = align == Align::Left     ? 0.0
+                       : align == Align::Center ? m.advance / 2.0
+                                                : m.advance;
   const int ox = static_cast<int>(std::lround(x - shift));
   const int oy = static_cast<int>(std::lround(y)) - m.baseline;
   for (int j = 0; j < m.h; ++j)

@@ -24,20 +24,23 @@ std::array<int, 3> pixel_rgb(const Image& image, int x, int y);
 // Composites `color` over pixel (x, y) with opacity `alpha` in [0, 1]; outside: ignored.
 void blend_pixel(Image& image, int x, int y, Rgb color, double alpha);
 // Axis-aligned rectangle [x0, x1) x [y0, y1) with antialiased (fractional) edges.
-void fill_rect(Image& image, double x0, double y0, double x1, double y1, Rgb color, double alpha = 1.0);
+void fill_rect(Image& image, double x0, double y0, double x1, double y1, Rgb color,
+               double alpha = 1.0);
 void stroke_rect(Image& image, double x0, double y0, double x1, double y1, double width, Rgb color);
 
 // A polyline of the given width with round joins and caps; each pixel is covered once,
 // so overlapping segments of one polyline do not darken.
 void draw_polyline(Image& image, const std::vector<Point2>& points, double width, Rgb color,
                    double alpha = 1.0);
-inline void draw_line(Image& image, Point2 a, Point2 b, double width, Rgb color, double alpha = 1.0) {
+inline void draw_line(Image& image, Point2 a, Point2 b, double width, Rgb color,
+                      double alpha = 1.0) {
   draw_polyline(image, {a, b}, width, color, alpha);
 }
 
 enum class MarkerShape { Circle, Square, Diamond, TriangleUp, TriangleDown };
 // A filled marker of the given radius (half its size) with a thin outline.
-void draw_marker(Image& image, Point2 center, double radius, MarkerShape shape, Rgb fill, Rgb outline);
+void draw_marker(Image& image, Point2 center, double radius, MarkerShape shape, Rgb fill,
+                 Rgb outline);
 // A ring (unfilled circle): used to highlight points.
 void draw_ring(Image& image, Point2 center, double radius, double width, Rgb color);
 

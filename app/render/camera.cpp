@@ -38,7 +38,8 @@ Camera fit_camera(const WorldBox& box, const PixelRect& rect) {
   Camera c;
   c.pixels_per_metre = std::min(rect.w / (box.x1 - box.x0), rect.h / (box.y1 - box.y0));
   const double cx = 0.5 * (box.x0 + box.x1), cy = 0.5 * (box.y0 + box.y1);
-  c.origin = Vec2(rect.x + 0.5 * rect.w - c.pixels_per_metre * cx, rect.y + 0.5 * rect.h + c.pixels_per_metre * cy);
+  c.origin = Vec2(rect.x + 0.5 * rect.w - c.pixels_per_metre * cx,
+                  rect.y + 0.5 * rect.h + c.pixels_per_metre * cy);
   return c;
 }
 

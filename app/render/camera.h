@@ -43,7 +43,8 @@ struct Camera {
     return {origin.x() + pixels_per_metre * world.x(), origin.y() - pixels_per_metre * world.y()};
   }
   Vec2 to_world(const Vec2& pixel) const {
-    return {(pixel.x() - origin.x()) / pixels_per_metre, (origin.y() - pixel.y()) / pixels_per_metre};
+    return {(pixel.x() - origin.x()) / pixels_per_metre,
+            (origin.y() - pixel.y()) / pixels_per_metre};
   }
 };
 

@@ -43,10 +43,14 @@ std::string format_time(double t, double h) {
 
 const char* model_display_name(Model m) {
   switch (m) {
-    case Model::NeoHookean: return "neo-Hookean";
-    case Model::Linear: return "linear";
-    case Model::Arap: return "ARAP";
-    case Model::StableNeoHookean: return "stable neo-Hookean";
+    case Model::NeoHookean:
+      return "neo-Hookean";
+    case Model::Linear:
+      return "linear";
+    case Model::Arap:
+      return "ARAP";
+    case Model::StableNeoHookean:
+      return "stable neo-Hookean";
   }
   return "?";
 }

@@ -1,14 +1,12 @@
 #include "app/render/frame_writer.h"
 
 #include <pthread.h>
-
-#include <algorithm>
-
-#include "app/output_files.h"
-
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdlib>
+
+#include "app/output_files.h"
 
 namespace {
 
@@ -20,7 +18,8 @@ unsigned char* zlib_compress(unsigned char* data, int data_len, int* out_len, in
   uLongf size = compressBound(static_cast<uLong>(data_len));
   auto* out = static_cast<unsigned char*>(std::malloc(size));
   if (out == nullptr) return nullptr;
-  if (compress2(out, &size, data, static_cast<uLong>(data_len), std::clamp(quality, 1, 9)) != Z_OK) {
+  if (compress2(out, &size, data, static_cast<uLong>(data_len), std::clamp(quality, 1, 9)) !=
+      Z_OK) {
     std::free(out);
     return nullptr;
   }
@@ -43,7 +42,8 @@ namespace invfree::render {
 namespace {
 
 void append_bytes(void* context, void* data, int size) {
-  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                             static_cast<size_t>(size));
 }
 
 // stb reads its compression level from a global: set it once, before any worker starts,
@@ -72,7 +72,8 @@ std::string encode_png(const std::uint8_t* rgba, int width, int height, int comp
   }
   std::string png;
   png.reserve(rgb.size() / 8);
-  if (!stbi_write_png_to_func(append_bytes, &png, width, height, 3, rgb.data(), width * 3)) return "";
+  if (!stbi_write_png_to_func(append_bytes, &png, width, height, 3, rgb.data(), width * 3))
+    return "";
   return png;
 }
 
@@ -151,12 +152,14 @@ void FrameWriter::work() {
       std::lock_guard lock(mutex_);
       skip = !error_.empty();  // after a failure (disk full), write nothing more
     }
-    const std::string e =
-        skip ? "" : write_png_file(job.path, job.pixels.data(), job.width, job.height, compression_level_);
+    const std::string e = skip ? ""
+                               : write_png_file(job.path, job.pixels.data(), job.width, job.height,
+                                                compression_level_);
     {
       std::lock_guard lock(mutex_);
       --busy_;
-      if (free_buffers_.size() < capacity_ + thread_count_) free_buffers_.push_back(std::move(job.pixels));
+      if (free_buffers_.size() < capacity_ + thread_count_)
+        free_buffers_.push_back(std::move(job.pixels));
       if (!skip && e.empty()) ++written_;
       if (!e.empty() && error_.empty()) error_ = e;
     }

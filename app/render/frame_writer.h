@@ -20,10 +20,11 @@ namespace invfree::render {
 
 // Encodes RGBA8 bottom-up pixels as an RGB PNG at zlib level `compression_level`
 // (stb_image_write's scale: 1 fastest). Returns the file's bytes ("" on failure).
-std::string encode_png(const std::uint8_t* rgba_bottom_up, int width, int height, int compression_level);
+std::string encode_png(const std::uint8_t* rgba_bottom_up, int width, int height,
+                       int compression_level);
 // Encodes and writes atomically. Returns "" or a one-line error naming the path.
-std::string write_png_file(const std::string& path, const std::uint8_t* rgba_bottom_up, int width, int height,
-                           int compression_level);
+std::string write_png_file(const std::string& path, const std::uint8_t* rgba_bottom_up, int width,
+                           int height, int compression_level);
 
 class FrameWriter {
  public:

@@ -6,8 +6,8 @@ namespace invfree::render {
 
 std::string load_gl_api(GlGetProcAddress get_proc_address, GlApi* api) {
   GlApi loaded;
-#define INVFREE_GL_LOAD(type, name)                                                     \
-  loaded.name = reinterpret_cast<type>(get_proc_address("gl" #name));                  \
+#define INVFREE_GL_LOAD(type, name)                                   \
+  loaded.name = reinterpret_cast<type>(get_proc_address("gl" #name)); \
   if (loaded.name == nullptr) return "OpenGL function gl" #name " is not available";
   INVFREE_GL_FUNCTIONS(INVFREE_GL_LOAD)
 #undef INVFREE_GL_LOAD

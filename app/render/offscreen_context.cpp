@@ -25,10 +25,13 @@ std::unique_ptr<OffscreenContext> OffscreenContext::create(std::string* error) {
     if (c->library_ != nullptr) break;
   }
   if (c->library_ == nullptr) {
-    *error = "cannot load libOSMesa.so.8 for offscreen rendering (install libosmesa6: sudo scripts/install-deps.sh)";
+    *error =
+        "cannot load libOSMesa.so.8 for offscreen rendering (install libosmesa6: sudo "
+        "scripts/install-deps.sh)";
     return nullptr;
   }
-  const auto create_attribs = symbol<decltype(&OSMesaCreateContextAttribs)>(c->library_, "OSMesaCreateContextAttribs");
+  const auto create_attribs =
+      symbol<decltype(&OSMesaCreateContextAttribs)>(c->library_, "OSMesaCreateContextAttribs");
   c->make_current_ = symbol<MakeCurrentFn>(c->library_, "OSMesaMakeCurrent");
   c->destroy_ = symbol<DestroyFn>(c->library_, "OSMesaDestroyContext");
   c->get_proc_address_ = symbol<GlGetProcAddress>(c->library_, "OSMesaGetProcAddress");
@@ -38,9 +41,21 @@ std::unique_ptr<OffscreenContext> OffscreenContext::create(std::string* error) {
   }
   // Core profile 3.3; no depth, stencil or accumulation buffer (the renderer's FBOs have
   // what they need).
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                         OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_STENCIL_BITS,
+                         0,
+                         OSMESA_ACCUM_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         3,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         3,
+                         0};
   c->context_ = create_attribs(attribs, nullptr);
   if (c->context_ == nullptr) {
     *error = "OSMesa could not create an OpenGL 3.3 core context";

@@ -18,7 +18,9 @@ namespace {
 struct Rgba {
   float r, g, b, a;
 };
-constexpr Rgba rgba(Rgb c, float a = 1.0f) { return {c.r, c.g, c.b, a}; }
+constexpr Rgba rgba(Rgb c, float a = 1.0f) {
+  return {c.r, c.g, c.b, a};
+}
 
 // The figure's palette (the det F colours come from app/colormap.h).
 constexpr Rgba kPlotBackground{0.955f, 0.96f, 0.968f, 1.0f};  // so that white (det F = 1) shows
@@ -52,7 +54,9 @@ void add_triangle(Shapes& s, Vec2 a, Vec2 b, Vec2 c, Rgba ca, Rgba cb, Rgba cc) 
   s.push_back({float(b.x()), float(b.y()), cb});
   s.push_back({float(c.x()), float(c.y()), cc});
 }
-void add_triangle(Shapes& s, Vec2 a, Vec2 b, Vec2 c, Rgba color) { add_triangle(s, a, b, c, color, color, color); }
+void add_triangle(Shapes& s, Vec2 a, Vec2 b, Vec2 c, Rgba color) {
+  add_triangle(s, a, b, c, color, color, color);
+}
 
 // Axis-aligned rectangle; colour `top` at y0 and `bottom` at y1 (a vertical gradient).
 void add_rect(Shapes& s, double x0, double y0, double x1, double y1, Rgba top, Rgba bottom) {
@@ -80,7 +84,8 @@ void add_segment(Shapes& s, Vec2 a, Vec2 b, double width, Rgba color) {
     s.push_back({float(p[k].x()), float(p[k].y()), color, across[k], float(half)});
 }
 
-void add_rect_outline(Shapes& s, double x0, double y0, double x1, double y1, double width, Rgba color) {
+void add_rect_outline(Shapes& s, double x0, double y0, double x1, double y1, double width,
+                      Rgba color) {
   const double h = 0.5 * width;
   add_rect(s, x0 - h, y0 - h, x1 + h, y0 + h, color);
   add_rect(s, x0 - h, y1 - h, x1 + h, y1 + h, color);
@@ -90,8 +95,10 @@ void add_rect_outline(Shapes& s, double x0, double y0, double x1, double y1, dou
 
 std::string compile_error(const GlApi& gl, GLuint object, bool program) {
   char log[2048] = {};
-  if (program) gl.GetProgramInfoLog(object, sizeof log, nullptr, log);
-  else gl.GetShaderInfoLog(object, sizeof log, nullptr, log);
+  if (program)
+    gl.GetProgramInfoLog(object, sizeof log, nullptr, log);
+  else
+    gl.GetShaderInfoLog(object, sizeof log, nullptr, log);
   std::string s(log);
   for (char& c : s)
     if (c == '\n') c = ' ';
@@ -99,7 +106,8 @@ std::string compile_error(const GlApi& gl, GLuint object, bool program) {
   return s;
 }
 
-GLuint build_program(const GlApi& gl, const char* name, const char* vertex, const char* fragment, std::string* error) {
+GLuint build_program(const GlApi& gl, const char* name, const char* vertex, const char* fragment,
+                     std::string* error) {
   GLuint shaders[2] = {gl.CreateShader(GL_VERTEX_SHADER), gl.CreateShader(GL_FRAGMENT_SHADER)};
   const char* sources[2] = {vertex, fragment};
   for (int i = 0; i < 2; ++i) {
@@ -124,7 +132,8 @@ GLuint build_program(const GlApi& gl, const char* name, const char* vertex, cons
   GLint ok = 0;
   gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
-    *error = std::string("shader program ") + name + " does not link: " + compile_error(gl, program, true);
+    *error = std::string("shader program ") + name +
+             " does not link: " + compile_error(gl, program, true);
     gl.DeleteProgram(program);
     return 0;
   }
@@ -133,7 +142,8 @@ GLuint build_program(const GlApi& gl, const char* name, const char* vertex, cons
 
 // Edges of a triangle list, each once, split into interior ones (two triangles) and the
 // boundary (one triangle).
-void mesh_edges(const std::vector<std::array<int, 3>>& triangles, std::vector<std::pair<int, int>>* interior,
+void mesh_edges(const std::vector<std::array<int, 3>>& triangles,
+                std::vector<std::pair<int, int>>* interior,
                 std::vector<std::pair<int, int>>* boundary) {
   std::vector<std::pair<int, int>> all;
   all.reserve(triangles.size() * 3);
@@ -181,7 +191,8 @@ struct GlResources {
     draw_fbo = draw_rb = resolve_fbo = resolve_texture = 0;
   }
 
-  void add_text(std::string_view s, int size, double x, double baseline, Rgba color, double align = 0.0) {
+  void add_text(std::string_view s, int size, double x, double baseline, Rgba color,
+                double align = 0.0) {
     if (align != 0.0) x -= align * atlas.text_width(s, size);
     glyphs.clear();
     atlas.layout(s, size, x, baseline, &glyphs);
@@ -195,8 +206,8 @@ struct GlResources {
 
 // The side panel: scene, model, Lame parameters, time, step, det F extremes, and the
 // colour bar with its ticks, the min/max markers and the det F <= 0 swatch.
-static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState& state, double det_lo, double det_hi,
-                int inverted) {
+static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState& state,
+                       double det_lo, double det_hi, int inverted) {
   const SceneDef& scene = state.scene;
   const double s = L.scale;
   Shapes& panel = res.shapes;
@@ -226,8 +237,9 @@ static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState&
   res.add_text(buf, kBody, x0, y, kInk);
   if (inverted > 0) {
     y += 1.3 * body;
-    res.add_text("inverted: " + std::to_string(inverted) + (inverted == 1 ? " triangle" : " triangles"), kBody, x0, y,
-                 kInvertedInk);
+    res.add_text(
+        "inverted: " + std::to_string(inverted) + (inverted == 1 ? " triangle" : " triangles"),
+        kBody, x0, y, kInvertedInk);
   }
 
   // Colour bar: vertical, stretch up, with the det F <= 0 swatch below it.
@@ -242,7 +254,8 @@ static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState&
   const auto bar_y = [&](double t) { return bar_y1 - 0.5 * (t + 1.0) * (bar_y1 - bar_y0); };
   for (int k = 0; k < 6; ++k) {  // the colormap's seven stops: piecewise linear, exact
     const double t0 = -1.0 + k / 3.0, t1 = -1.0 + (k + 1) / 3.0;
-    add_rect(panel, bar_x0, bar_y(t1), bar_x1, bar_y(t0), rgba(diverging_color(t1)), rgba(diverging_color(t0)));
+    add_rect(panel, bar_x0, bar_y(t1), bar_x1, bar_y(t0), rgba(diverging_color(t1)),
+             rgba(diverging_color(t0)));
   }
   const double thin = std::max(1.0, std::round(s));
   add_rect_outline(panel, bar_x0, bar_y0, bar_x1, bar_y1, thin, kMutedInk);
@@ -259,7 +272,8 @@ static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState&
   res.add_text("compression", kSmall, note_x, bar_y(-1.0) + 0.36 * small, kMutedInk);
   add_rect(panel, bar_x0, swatch_y0, bar_x1, swatch_y1, rgba(kInvertedColor));
   add_rect_outline(panel, bar_x0, swatch_y0, bar_x1, swatch_y1, thin, kMutedInk);
-  res.add_text("det F ≤ 0 (inverted)", kSmall, label_x, 0.5 * (swatch_y0 + swatch_y1) + 0.36 * small, kInk);
+  res.add_text("det F ≤ 0 (inverted)", kSmall, label_x,
+               0.5 * (swatch_y0 + swatch_y1) + 0.36 * small, kInk);
   // Markers (a glyph, so antialiased like the text) at the current min and max det F,
   // beside the swatch when inverted.
   for (const double d : {det_lo, det_hi}) {
@@ -267,7 +281,6 @@ static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState&
     const double mx = bar_x0 - std::round(2.0 * s) - res.atlas.text_width("▶", kSmall);
     res.add_text("▶", kSmall, mx, my - res.atlas.ink_middle(kSmall, U'▶'), kInk);
   }
-
 }
 
 Renderer::Renderer() : gl_(std::make_unique<GlResources>()) {}
@@ -316,9 +329,11 @@ std::unique_ptr<Renderer> Renderer::create(GlGetProcAddress get_proc_address, in
   gl.BindVertexArray(res.shape_vao);
   gl.BindBuffer(GL_ARRAY_BUFFER, res.shape_vbo);
   gl.EnableVertexAttribArray(0);
-  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex), reinterpret_cast<void*>(offsetof(ShapeVertex, x)));
+  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
+                         reinterpret_cast<void*>(offsetof(ShapeVertex, x)));
   gl.EnableVertexAttribArray(1);
-  gl.VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex), reinterpret_cast<void*>(offsetof(ShapeVertex, c)));
+  gl.VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
+                         reinterpret_cast<void*>(offsetof(ShapeVertex, c)));
   gl.EnableVertexAttribArray(2);
   gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
                          reinterpret_cast<void*>(offsetof(ShapeVertex, across)));
@@ -327,11 +342,14 @@ std::unique_ptr<Renderer> Renderer::create(GlGetProcAddress get_proc_address, in
   gl.BindVertexArray(res.text_vao);
   gl.BindBuffer(GL_ARRAY_BUFFER, res.text_vbo);
   gl.EnableVertexAttribArray(0);
-  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(TextVertex), reinterpret_cast<void*>(offsetof(TextVertex, x)));
+  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(TextVertex),
+                         reinterpret_cast<void*>(offsetof(TextVertex, x)));
   gl.EnableVertexAttribArray(1);
-  gl.VertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(TextVertex), reinterpret_cast<void*>(offsetof(TextVertex, u)));
+  gl.VertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(TextVertex),
+                         reinterpret_cast<void*>(offsetof(TextVertex, u)));
   gl.EnableVertexAttribArray(2);
-  gl.VertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(TextVertex), reinterpret_cast<void*>(offsetof(TextVertex, c)));
+  gl.VertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(TextVertex),
+                         reinterpret_cast<void*>(offsetof(TextVertex, c)));
   gl.BindVertexArray(static_cast<GLuint>(previous_vao));
   gl.BindBuffer(GL_ARRAY_BUFFER, 0);
   gl.GenTextures(1, &res.atlas_texture);
@@ -343,7 +361,9 @@ std::unique_ptr<Renderer> Renderer::create(GlGetProcAddress get_proc_address, in
   return r;
 }
 
-int Renderer::samples() const { return gl_->samples; }
+int Renderer::samples() const {
+  return gl_->samples;
+}
 
 std::string Renderer::resize(int width, int height) {
   GlResources& res = *gl_;
@@ -352,8 +372,8 @@ std::string Renderer::resize(int width, int height) {
   gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   gl.GetIntegerv(GL_MAX_SAMPLES, &max_samples);
   if (width < 1 || height < 1 || width > max_size || height > max_size)
-    return "frame size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." +
-           std::to_string(max_size) + " pixels";
+    return "frame size " + std::to_string(width) + "x" + std::to_string(height) +
+           " is outside 1.." + std::to_string(max_size) + " pixels";
   res.release_framebuffers();
   width_ = width;
   height_ = height;
@@ -374,9 +394,11 @@ std::string Renderer::resize(int width, int height) {
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   gl.GenFramebuffers(1, &res.resolve_fbo);
   gl.BindFramebuffer(GL_FRAMEBUFFER, res.resolve_fbo);
-  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, res.resolve_texture, 0);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, res.resolve_texture,
+                          0);
   std::string error;
-  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error = "cannot create the frame's framebuffer";
+  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    error = "cannot create the frame's framebuffer";
 
   res.samples = std::min(max_samples_, static_cast<int>(max_samples));
   if (error.empty() && res.samples > 1) {
@@ -404,8 +426,8 @@ std::string Renderer::resize(int width, int height) {
   res.atlas.build(res.font_sizes);
   gl.BindTexture(GL_TEXTURE_2D, res.atlas_texture);
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R8, res.atlas.width(), res.atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
-                res.atlas.pixels().data());
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R8, res.atlas.width(), res.atlas.height(), 0, GL_RED,
+                GL_UNSIGNED_BYTE, res.atlas.pixels().data());
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -492,11 +514,13 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   for (const auto& [a, b] : res.boundary_edges) add_segment(world, p[a], p[b], outline, kOutline);
   if (scene.has_ground) {
     const double gy = cam.to_pixel(Vec2(0.0, scene.ground_y)).y();
-    add_segment(world, {px0 - 10, gy + 0.5 * plane_line}, {px1 + 10, gy + 0.5 * plane_line}, plane_line, kPlaneEdge);
+    add_segment(world, {px0 - 10, gy + 0.5 * plane_line}, {px1 + 10, gy + 0.5 * plane_line},
+                plane_line, kPlaneEdge);
   }
   if (scene.has_ceiling) {
     const double cy = cam.to_pixel(Vec2(0.0, state.ceiling_y)).y();
-    add_segment(world, {px0 - 10, cy - 0.5 * plane_line}, {px1 + 10, cy - 0.5 * plane_line}, plane_line, kPlaneEdge);
+    add_segment(world, {px0 - 10, cy - 0.5 * plane_line}, {px1 + 10, cy - 0.5 * plane_line},
+                plane_line, kPlaneEdge);
   }
   const size_t world_vertices = world.size();
 
@@ -525,8 +549,9 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   gl.BindBuffer(GL_ARRAY_BUFFER, res.shape_vbo);
   // Clip the world to the plot area (GL's scissor box has its origin bottom-left).
   gl.Enable(GL_SCISSOR_TEST);
-  gl.Scissor(static_cast<GLint>(std::lround(L.plot.x)), static_cast<GLint>(std::lround(L.height - py1)),
-             static_cast<GLsizei>(std::lround(L.plot.w)), static_cast<GLsizei>(std::lround(L.plot.h)));
+  gl.Scissor(
+      static_cast<GLint>(std::lround(L.plot.x)), static_cast<GLint>(std::lround(L.height - py1)),
+      static_cast<GLsizei>(std::lround(L.plot.w)), static_cast<GLsizei>(std::lround(L.plot.h)));
   const float spacing = static_cast<float>(std::max(6.0, std::round(14.0 * s)));
   gl.Uniform4f(res.shape_hatch, spacing, static_cast<float>(std::max(1.0, 1.3 * s)), 1.0f, 0.0f);
   gl.Uniform4f(res.shape_hatch_color, kPlaneHatch.r, kPlaneHatch.g, kPlaneHatch.b, 1.0f);
@@ -538,7 +563,8 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
                 res.shapes.data(), GL_STREAM_DRAW);
   gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(world_vertices));
   gl.Disable(GL_SCISSOR_TEST);
-  gl.DrawArrays(GL_TRIANGLES, static_cast<GLint>(world_vertices), static_cast<GLsizei>(res.shapes.size() - world_vertices));
+  gl.DrawArrays(GL_TRIANGLES, static_cast<GLint>(world_vertices),
+                static_cast<GLsizei>(res.shapes.size() - world_vertices));
 
   gl.UseProgram(res.text_program);
   gl.Uniform2f(res.text_frame_size, float(L.width), float(L.height));
@@ -548,14 +574,15 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   gl.BindTexture(GL_TEXTURE_2D, res.atlas_texture);
   gl.BindVertexArray(res.text_vao);
   gl.BindBuffer(GL_ARRAY_BUFFER, res.text_vbo);
-  gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(res.text.size() * sizeof(TextVertex)), res.text.data(),
-                GL_STREAM_DRAW);
+  gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(res.text.size() * sizeof(TextVertex)),
+                res.text.data(), GL_STREAM_DRAW);
   gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(res.text.size()));
 
   if (res.draw_fbo) {
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, res.draw_fbo);
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, res.resolve_fbo);
-    gl.BlitFramebuffer(0, 0, L.width, L.height, 0, 0, L.width, L.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl.BlitFramebuffer(0, 0, L.width, L.height, 0, 0, L.width, L.height, GL_COLOR_BUFFER_BIT,
+                       GL_NEAREST);
   }
 
   gl.BindTexture(GL_TEXTURE_2D, 0);
@@ -581,7 +608,9 @@ void Renderer::read_pixels(std::vector<std::uint8_t>* rgba) const {
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
 }
 
-unsigned Renderer::texture() const { return gl_->resolve_texture; }
+unsigned Renderer::texture() const {
+  return gl_->resolve_texture;
+}
 
 void Renderer::blit_to(unsigned target, int x, int y, int w, int h) const {
   const GlApi& gl = gl_->gl;

@@ -90,7 +90,9 @@ class Renderer {
   // The layout of a frame with or without the panel.
   FrameLayout layout(bool panel = true) const { return frame_layout(width(), height(), panel); }
   // The fixed camera of `scene` (for picking: camera.to_world(pixel)).
-  Camera camera(const SceneDef& scene, bool panel = true) const { return scene_camera(scene, layout(panel)); }
+  Camera camera(const SceneDef& scene, bool panel = true) const {
+    return scene_camera(scene, layout(panel));
+  }
 
   void draw(const FrameState& state, const DrawOptions& options = {});
 

@@ -3,12 +3,14 @@
 // Each file is placed in .rodata followed by a NUL, so it is a C string. INVFREE_SHADER_DIR
 // (the source tree's shaders/, absolute) comes from app/render/CMakeLists.txt, which also
 // makes this file depend on the .glsl files so an edited shader is re-embedded.
-#define INVFREE_EMBED(symbol, file)                       \
-  asm(".pushsection .rodata\n"                            \
-      ".globl " #symbol "\n" #symbol ":\n"               \
-      ".incbin \"" INVFREE_SHADER_DIR "/" file "\"\n"     \
-      ".byte 0\n"                                         \
-      ".popsection\n");                                   \
+#define INVFREE_EMBED(symbol, file)            \
+  asm(".pushsection .rodata\n"                 \
+      ".globl " #symbol "\n" #symbol           \
+      ":\n"                                    \
+      ".incbin \"" INVFREE_SHADER_DIR "/" file \
+      "\"\n"                                   \
+      ".byte 0\n"                              \
+      ".popsection\n");                        \
   extern "C" const char symbol[];
 
 INVFREE_EMBED(invfree_shape_vertex_glsl, "shape_vertex.glsl")

@@ -11,8 +11,9 @@ namespace {
 
 // Symbols beyond ASCII that labels use: mu, lambda, Delta, nu, rho, <=, >=, element-of,
 // en dash, middle dot, times, minus, superscripts, arrows, the colour bar's marker.
-constexpr char32_t kExtraCodepoints[] = {U'μ', U'λ', U'Δ', U'ν', U'ρ', U'≤', U'≥', U'∈', U'–', U'·',
-                                         U'×', U'−', U'²', U'³', U'⁻', U'¹', U'↑', U'↓', U'°', U'…', U'▶'};
+constexpr char32_t kExtraCodepoints[] = {U'μ', U'λ', U'Δ', U'ν', U'ρ', U'≤', U'≥',
+                                         U'∈', U'–', U'·', U'×', U'−', U'²', U'³',
+                                         U'⁻', U'¹', U'↑', U'↓', U'°', U'…', U'▶'};
 
 constexpr int kAtlasWidth = 1024;
 
@@ -25,10 +26,14 @@ std::u32string decode_utf8(std::string_view s) {
     int extra = 0;
     char32_t cp = c;
     if (c >= 0x80) {
-      if ((c >> 5) == 0x6) extra = 1, cp = c & 0x1F;
-      else if ((c >> 4) == 0xE) extra = 2, cp = c & 0x0F;
-      else if ((c >> 3) == 0x1E) extra = 3, cp = c & 0x07;
-      else extra = -1;
+      if ((c >> 5) == 0x6)
+        extra = 1, cp = c & 0x1F;
+      else if ((c >> 4) == 0xE)
+        extra = 2, cp = c & 0x0F;
+      else if ((c >> 3) == 0x1E)
+        extra = 3, cp = c & 0x07;
+      else
+        extra = -1;
     }
     bool ok = extra >= 0 && i + extra < s.size();
     for (int k = 1; ok && k <= extra; ++k) {
@@ -106,7 +111,9 @@ double TextAtlas::text_width(std::string_view utf8, int size) const {
   return pen;
 }
 
-double TextAtlas::ascent(int size) const { return font_ascent(sizes_[size]); }
+double TextAtlas::ascent(int size) const {
+  return font_ascent(sizes_[size]);
+}
 
 double TextAtlas::ink_middle(int size, char32_t c) const {
   const Entry& e = entry(size, c);
@@ -124,7 +131,8 @@ void TextAtlas::layout(std::string_view utf8, int size, double x, double baselin
     if (e.w > 0 && e.h > 0) {
       const auto gx = static_cast<float>(std::round(pen) + e.x_offset);
       const auto gy = static_cast<float>(base + e.y_offset);
-      out->push_back({gx, gy, gx + e.w, gy + e.h, float(e.x), float(e.y), float(e.x + e.w), float(e.y + e.h)});
+      out->push_back(
+          {gx, gy, gx + e.w, gy + e.h, float(e.x), float(e.y), float(e.x + e.w), float(e.y + e.h)});
     }
     pen += e.advance;
   }

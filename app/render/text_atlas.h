@@ -32,7 +32,9 @@ class TextAtlas {
 
   int width() const { return width_; }
   int height() const { return height_; }
-  const std::vector<std::uint8_t>& pixels() const { return pixels_; }  // width * height, row 0 first
+  const std::vector<std::uint8_t>& pixels() const {
+    return pixels_;
+  }  // width * height, row 0 first
 
   // Width in pixels of `utf8` at size index `size` (an index into build's sizes).
   double text_width(std::string_view utf8, int size) const;
@@ -42,7 +44,8 @@ class TextAtlas {
   // centre a symbol on a given y.
   double ink_middle(int size, char32_t c) const;
   // Appends the quads of `utf8` with its baseline starting at (x, baseline).
-  void layout(std::string_view utf8, int size, double x, double baseline, std::vector<GlyphQuad>* out) const;
+  void layout(std::string_view utf8, int size, double x, double baseline,
+              std::vector<GlyphQuad>* out) const;
 
  private:
   struct Entry {

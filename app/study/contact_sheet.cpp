@@ -27,7 +27,9 @@ void draw_frame(Image& image, const Frame& f, int x0, int y0, int size) {
   const double ground = f.has_ground ? f.ground_y : -f.side;
   const double bottom = ground - 0.05 * f.side;
   const double scale = size / span;
-  auto px = [&](double x, double y) { return Point2{(x + 0.5 * span) * scale, size - (y - bottom) * scale}; };
+  auto px = [&](double x, double y) {
+    return Point2{(x + 0.5 * span) * scale, size - (y - bottom) * scale};
+  };
   if (f.has_ground) {
     const double gy = px(0.0, f.ground_y).y;
     fill_rect(cell, 0, gy, size, size, kPlaneFill);
@@ -50,7 +52,8 @@ void draw_frame(Image& image, const Frame& f, int x0, int y0, int size) {
         colors.push_back(det_f_color(f.det_f[t]));
       }
   fill_mesh(cell, nodes, tris, colors);
-  for (const auto& t : tris) draw_polyline(cell, {nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[0]]}, 0.6, kInk, 0.45);
+  for (const auto& t : tris)
+    draw_polyline(cell, {nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[0]]}, 0.6, kInk, 0.45);
   // A triangle that has just gone through det F = 0 is a sliver too thin to see: mark it.
   for (size_t t = 0; t < f.det_f.size(); ++t)
     if (!(f.det_f[t] > 0.0)) {
@@ -71,44 +74,55 @@ Image contact_sheet(const StabilityResult& r) {
   const int width = left + cols * (cell + gap) + 20;
   const int height = top + rows * (cell + caption + gap) + bar_h;
   Image img = make_image(width, height, kWhite);
-  draw_text(img, "Where methods fail: the final frame of each run, or the last frame before it failed, coloured by det F",
+  draw_text(img,
+            "Where methods fail: the final frame of each run, or the last frame before it failed, "
+            "coloured by det F",
             20, 36, 24, kInk);
-  draw_text(img, "rows: methods; columns: stress scenes (assets/scenes/stress-*.toml); symplectic Euler takes 20 steps per scene step",
+  draw_text(img,
+            "rows: methods; columns: stress scenes (assets/scenes/stress-*.toml); symplectic Euler "
+            "takes 20 steps per scene step",
             20, 64, 16, kMuted);
   for (int k = 0; k < cols; ++k) {
     const double cx = left + k * (cell + gap) + cell / 2.0;
     const auto lines = wrap_text(r.scene_labels[k], 16, cell);
     for (size_t i = 0; i < lines.size(); ++i)
-      draw_text(img, lines[i], cx, top - 30 - 20.0 * (lines.size() - 1 - i), 16, kInk, Align::Center);
+      draw_text(img, lines[i], cx, top - 30 - 20.0 * (lines.size() - 1 - i), 16, kInk,
+                Align::Center);
     draw_text(img, r.scenes[k], cx, top - 10, 11, kMuted, Align::Center);
   }
   for (int m = 0; m < rows; ++m) {
     const int y = top + m * (cell + caption + gap);
     const auto lines = wrap_text(r.method_labels[m], 15, left - 30);
     draw_text(img, r.methods[m], 20, y + 40, 17, kInk);
-    for (size_t i = 0; i < lines.size(); ++i) draw_text(img, lines[i], 20, y + 64 + 19.0 * i, 14, kMuted);
+    for (size_t i = 0; i < lines.size(); ++i)
+      draw_text(img, lines[i], 20, y + 64 + 19.0 * i, 14, kMuted);
     for (int k = 0; k < cols; ++k) {
       const StabilityCell& c = r.at(m, k);
       const int x = left + k * (cell + gap);
       if (c.verdict == Verdict::NotApplicable) {
         fill_rect(img, x, y, x + cell, y + cell, {0.96f, 0.96f, 0.96f});
         draw_text(img, "n/a", x + cell / 2.0, y + cell / 2.0, 22, kMuted, Align::Center);
-        const auto why = wrap_text(c.message.find("inverted") != std::string::npos ? "cannot start inverted"
-                                                                                     : "cannot start",
-                                   13, cell - 10);
+        const auto why =
+            wrap_text(c.message.find("inverted") != std::string::npos ? "cannot start inverted"
+                                                                      : "cannot start",
+                      13, cell - 10);
         for (size_t i = 0; i < why.size(); ++i)
-          draw_text(img, why[i], x + cell / 2.0, y + cell / 2.0 + 22 + 16.0 * i, 13, kMuted, Align::Center);
+          draw_text(img, why[i], x + cell / 2.0, y + cell / 2.0 + 22 + 16.0 * i, 13, kMuted,
+                    Align::Center);
       } else {
         draw_frame(img, c.frame, x, y, cell);
       }
       const bool ok = c.verdict == Verdict::Ok;
       const std::string verdict = verdict_name(c.verdict);
-      draw_text(img, verdict, x + cell / 2.0, y + cell + 17, 16, ok ? kInk : (c.verdict == Verdict::NotApplicable ? kMuted : kFail),
-                Align::Center);
+      draw_text(img, verdict, x + cell / 2.0, y + cell + 17, 16,
+                ok ? kInk : (c.verdict == Verdict::NotApplicable ? kMuted : kFail), Align::Center);
       char sub[64];
-      if (c.verdict == Verdict::NotApplicable) sub[0] = 0;
-      else if (ok) std::snprintf(sub, sizeof sub, "t = %.2f s", c.frame.time);
-      else std::snprintf(sub, sizeof sub, "step %ld (t = %.3g s)", c.fail_step, c.fail_step * c.h);
+      if (c.verdict == Verdict::NotApplicable)
+        sub[0] = 0;
+      else if (ok)
+        std::snprintf(sub, sizeof sub, "t = %.2f s", c.frame.time);
+      else
+        std::snprintf(sub, sizeof sub, "step %ld (t = %.3g s)", c.fail_step, c.fail_step * c.h);
       draw_text(img, sub, x + cell / 2.0, y + cell + 33, 12, kMuted, Align::Center);
     }
   }
@@ -125,7 +139,11 @@ Image contact_sheet(const StabilityResult& r) {
     const double xpos = bx + (det_f_scale_position(d) + 1.0) / 2.0 * bw;
     draw_line(img, {xpos, double(by + bh)}, {xpos, by + bh + 5.0}, 1.0, kInk);
     char label[32];
-    std::snprintf(label, sizeof label, d == 1.0 / kDetFRange ? "\u2264 %.3g" : d == kDetFRange ? "\u2265 %.3g" : "%.3g", d);
+    std::snprintf(label, sizeof label,
+                  d == 1.0 / kDetFRange ? "\u2264 %.3g"
+                  : d == kDetFRange     ? "\u2265 %.3g"
+                                        : "%.3g",
+                  d);
     draw_text(img, label, xpos, by + bh + 21, 14, kInk, Align::Center);
   }
   fill_rect(img, bx + bw + 40, by, bx + bw + 80, by + bh, kInvertedColor);

@@ -5,15 +5,16 @@
 
 namespace invfree {
 
-double rms_position_error(const std::vector<VecX>& run, const std::vector<VecX>& reference, double side,
-                          const std::vector<int>& node_map) {
+double rms_position_error(const std::vector<VecX>& run, const std::vector<VecX>& reference,
+                          double side, const std::vector<int>& node_map) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (run.empty() || run.size() != reference.size() || !(side > 0.0)) return nan;
   double sum = 0.0;
   long count = 0;
   for (size_t s = 0; s < run.size(); ++s) {
     const long nodes = run[s].size() / 2;
-    if (node_map.empty() ? run[s].size() != reference[s].size() : static_cast<long>(node_map.size()) != nodes)
+    if (node_map.empty() ? run[s].size() != reference[s].size()
+                         : static_cast<long>(node_map.size()) != nodes)
       return nan;
     for (long i = 0; i < nodes; ++i) {
       const long r = node_map.empty() ? i : node_map[i];

@@ -13,8 +13,8 @@
 
 namespace invfree {
 
-double rms_position_error(const std::vector<VecX>& run, const std::vector<VecX>& reference, double side,
-                          const std::vector<int>& node_map = {});
+double rms_position_error(const std::vector<VecX>& run, const std::vector<VecX>& reference,
+                          double side, const std::vector<int>& node_map = {});
 
 // For square meshes numbered i*(n+1)+j: node (i, j) of the n_coarse mesh is node
 // (i k, j k) of the n_fine mesh, k = n_fine / n_coarse. Empty when n_fine is not a multiple.

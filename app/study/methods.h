@@ -18,10 +18,10 @@
 namespace invfree {
 
 struct Method {
-  const char* name;   // CSV/table key
-  const char* label;  // legend text
+  const char* name;                    // CSV/table key
+  const char* label;                   // legend text
   std::vector<const char*> overrides;  // every solver/model key, so no scene setting leaks in
-  int substeps = 1;   // steps per scene step in the stability sweep (explicit: tiny steps)
+  int substeps = 1;  // steps per scene step in the stability sweep (explicit: tiny steps)
   bool implicit() const { return substeps == 1; }
 };
 

@@ -4,14 +4,17 @@
 
 namespace invfree {
 
-long step_count(double duration, double h) { return std::lround(duration / h); }
+long step_count(double duration, double h) {
+  return std::lround(duration / h);
+}
 
 std::string sample_steps(const std::vector<double>& times, double h, std::vector<long>* steps) {
   steps->clear();
   for (double t : times) {
     const long k = std::lround(t / h);
     if (std::abs(k * h - t) > 1e-9 * std::max(1.0, t))
-      return "sample time " + std::to_string(t) + " s is not a multiple of h = " + std::to_string(h) + " s";
+      return "sample time " + std::to_string(t) +
+             " s is not a multiple of h = " + std::to_string(h) + " s";
     steps->push_back(k);
   }
   return "";

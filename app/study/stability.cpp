@@ -72,10 +72,11 @@ StabilityResult run_stability(const StabilityOptions& options) {
       cell.frame = r.frame;
       result.total_wall_s += r.wall_s;
       if (options.progress)
-        options.progress(std::string(m.name) + " on " + cell.scene + ": " + verdict_name(r.verdict) +
-                         (r.verdict == Verdict::Ok ? "" : " at step " + std::to_string(r.fail_step)) + " (" +
-                         std::to_string(r.steps) + " steps of " + fmt(scene.h) + " s, " + fmt(r.wall_s) + " s)" +
-                         (r.message.empty() ? "" : ": " + r.message));
+        options.progress(
+            std::string(m.name) + " on " + cell.scene + ": " + verdict_name(r.verdict) +
+            (r.verdict == Verdict::Ok ? "" : " at step " + std::to_string(r.fail_step)) + " (" +
+            std::to_string(r.steps) + " steps of " + fmt(scene.h) + " s, " + fmt(r.wall_s) + " s)" +
+            (r.message.empty() ? "" : ": " + r.message));
       result.cells.push_back(std::move(cell));
     }
   }
@@ -87,16 +88,18 @@ std::string stability_csv(const StabilityResult& r) {
   o << "method,scene,verdict,fail_step,wall_s\n";
   for (const StabilityCell& c : r.cells)
     o << c.method << "," << c.scene << "," << verdict_name(c.verdict) << ","
-      << (c.verdict == Verdict::Ok ? std::string() : std::to_string(c.fail_step)) << "," << fmt(c.wall_s, "%.6g")
-      << "\n";
+      << (c.verdict == Verdict::Ok ? std::string() : std::to_string(c.fail_step)) << ","
+      << fmt(c.wall_s, "%.6g") << "\n";
   return o.str();
 }
 
 std::string stability_markdown(const StabilityResult& r) {
   std::ostringstream o;
   o << "# Where methods fail: `invfree stability`\n\n"
-    << "Each row is a method, each column a stress scene (`assets/scenes/<scene>.toml`). A cell is `ok`, or "
-       "the verdict and the step at which the run failed (`n/a`: the method cannot start the scene). "
+    << "Each row is a method, each column a stress scene (`assets/scenes/<scene>.toml`). A cell is "
+       "`ok`, or "
+       "the verdict and the step at which the run failed (`n/a`: the method cannot start the "
+       "scene). "
        "Symplectic Euler takes 20 steps per scene step.\n\n";
   o << "| method |";
   for (const std::string& s : r.scenes) o << " `" << s << "` |";
@@ -107,14 +110,18 @@ std::string stability_markdown(const StabilityResult& r) {
     o << "| " << r.methods[m] << " |";
     for (size_t k = 0; k < r.scenes.size(); ++k) {
       const StabilityCell& c = r.at(m, k);
-      if (c.verdict == Verdict::Ok) o << " ok |";
-      else if (c.verdict == Verdict::NotApplicable) o << " n/a |";
-      else o << " **" << verdict_name(c.verdict) << "** (step " << c.fail_step << ") |";
+      if (c.verdict == Verdict::Ok)
+        o << " ok |";
+      else if (c.verdict == Verdict::NotApplicable)
+        o << " n/a |";
+      else
+        o << " **" << verdict_name(c.verdict) << "** (step " << c.fail_step << ") |";
     }
     o << "\n";
   }
   o << "\nScenes:\n\n";
-  for (size_t k = 0; k < r.scenes.size(); ++k) o << "- `" << r.scenes[k] << "`: " << r.scene_labels[k] << "\n";
+  for (size_t k = 0; k < r.scenes.size(); ++k)
+    o << "- `" << r.scenes[k] << "`: " << r.scene_labels[k] << "\n";
   o << "\nMethods (each is only scene settings, `--set` on any command):\n\n";
   for (const Method& m : study_methods())
     o << "- `" << m.name << "`: " << m.label << " — `" << method_command_line(m) << "`"
@@ -128,7 +135,8 @@ std::string stability_markdown(const StabilityResult& r) {
     o << "| " << r.methods[m] << " |";
     for (size_t k = 0; k < r.scenes.size(); ++k) {
       const StabilityCell& c = r.at(m, k);
-      o << " " << (c.verdict == Verdict::NotApplicable ? std::string("–") : fmt(c.wall_s, "%.3f")) << " |";
+      o << " " << (c.verdict == Verdict::NotApplicable ? std::string("–") : fmt(c.wall_s, "%.3f"))
+        << " |";
     }
     o << "\n";
   }
@@ -136,8 +144,8 @@ std::string stability_markdown(const StabilityResult& r) {
   for (const StabilityCell& c : r.cells)
     if (c.verdict != Verdict::Ok)
       o << "- " << c.method << " on `" << c.scene << "`: " << verdict_name(c.verdict)
-        << (c.verdict == Verdict::NotApplicable ? "" : " at step " + std::to_string(c.fail_step)) << ": "
-        << c.message << "\n";
+        << (c.verdict == Verdict::NotApplicable ? "" : " at step " + std::to_string(c.fail_step))
+        << ": " << c.message << "\n";
   for (const std::string& e : r.scene_errors) o << "- scene file error: " << e << "\n";
   return o.str();
 }

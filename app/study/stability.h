@@ -32,11 +32,14 @@ struct StabilityResult {
   std::vector<std::string> scene_errors;            // a stress file that failed to load
   double total_wall_s = 0.0;
   bool stopped = false;  // `stop` returned true: the result is incomplete
-  const StabilityCell& at(size_t method, size_t scene) const { return cells[method * scenes.size() + scene]; }
+  const StabilityCell& at(size_t method, size_t scene) const {
+    return cells[method * scenes.size() + scene];
+  }
 };
 
 struct StabilityOptions {
-  bool quick = false;  // quick: the first 2 s of each scene only (the full ceiling travel otherwise)
+  bool quick =
+      false;  // quick: the first 2 s of each scene only (the full ceiling travel otherwise)
   std::function<void(const std::string&)> progress;
   std::function<bool()> stop;  // checked between runs (Ctrl-C); may be empty
 };

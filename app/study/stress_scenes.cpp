@@ -42,7 +42,8 @@ const std::vector<StressScene>& stress_scenes() {
   static const std::vector<StressScene> scenes = [] {
     std::vector<StressScene> v;
     for (int i = 0; i < kEmbeddedStressSceneCount; ++i)
-      v.push_back({kEmbeddedStressScenes[i].name, kEmbeddedStressScenes[i].name, kEmbeddedStressScenes[i].text});
+      v.push_back({kEmbeddedStressScenes[i].name, kEmbeddedStressScenes[i].name,
+                   kEmbeddedStressScenes[i].text});
     const auto& h = headings();
     auto rank = [&](const std::string& name) {
       for (size_t k = 0; k < h.size(); ++k)

@@ -22,8 +22,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The sweeps, as multiples of the scene's h, tol and n_seg.
 struct Plan {
   std::vector<double> implicit_h, explicit_h, tol;
-  std::vector<int> mesh_divisor_or_multiplier;  // n_seg values as multiples of the scene's (negative: divide)
-  int samples = 5;            // sample times every 40 h (a multiple of every h swept)
+  std::vector<int>
+      mesh_divisor_or_multiplier;  // n_seg values as multiples of the scene's (negative: divide)
+  int samples = 5;                 // sample times every 40 h (a multiple of every h swept)
   double reference_h_divisor = 1600.0;
   double reference_tol_factor = 1e-4;
   double mesh_reference_h_divisor = 10.0;
@@ -64,7 +65,9 @@ std::string fmt(double v) {
 RunResult timed_run(const SceneDef& scene, const RunOptions& options, const Plan& plan) {
   RunResult best = run_scene(scene, options);
   double spent = best.wall_s;
-  for (int rep = 1; best.verdict == Verdict::Ok && spent < plan.timing_budget_s && rep < plan.max_repeats; ++rep) {
+  for (int rep = 1;
+       best.verdict == Verdict::Ok && spent < plan.timing_budget_s && rep < plan.max_repeats;
+       ++rep) {
     const RunResult again = run_scene(scene, options);
     spent += again.wall_s;
     best.wall_s = std::min(best.wall_s, again.wall_s);
@@ -118,20 +121,24 @@ StudyResult run_study(const SceneDef& scene, const StudyOptions& options) {
     if (e.empty()) {
       const RunResult r = run_scene(ref, run_options);
       result.total_wall_s += r.wall_s;
-      say(std::string("reference ") + model_name(model) + ": h = " + fmt(ref.h) + " s, tol = " + fmt(ref.tol) +
-          " m/s, " + std::to_string(r.steps) + " steps, " + verdict_name(r.verdict) + ", " + fmt(r.wall_s) + " s");
-      if (r.verdict == Verdict::Ok) samples = r.samples;
-      else e = std::string(verdict_name(r.verdict)) + " at step " + std::to_string(r.fail_step) + ": " + r.message;
+      say(std::string("reference ") + model_name(model) + ": h = " + fmt(ref.h) +
+          " s, tol = " + fmt(ref.tol) + " m/s, " + std::to_string(r.steps) + " steps, " +
+          verdict_name(r.verdict) + ", " + fmt(r.wall_s) + " s");
+      if (r.verdict == Verdict::Ok)
+        samples = r.samples;
+      else
+        e = std::string(verdict_name(r.verdict)) + " at step " + std::to_string(r.fail_step) +
+            ": " + r.message;
     }
     if (!e.empty())
-      result.reference_failures.push_back(std::string("reference for ") + model_name(model) + " failed (" + e +
-                                          "); its methods have no error");
+      result.reference_failures.push_back(std::string("reference for ") + model_name(model) +
+                                          " failed (" + e + "); its methods have no error");
     return (references[model] = samples).empty() ? nullptr : &references[model];
   };
 
   std::set<std::tuple<std::string, double, double, int>> done;
-  auto add_row = [&](const Method& method, SceneDef s, const std::vector<VecX>* ref, const std::vector<int>& map,
-                     const std::string& name) {
+  auto add_row = [&](const Method& method, SceneDef s, const std::vector<VecX>* ref,
+                     const std::vector<int>& map, const std::string& name) {
     if (result.stopped || (options.stop && (result.stopped = options.stop()))) return;
     if (!done.insert({name, s.h, s.tol, s.n_seg}).second) return;
     StudyRow row;
@@ -155,12 +162,15 @@ StudyResult run_study(const SceneDef& scene, const StudyOptions& options) {
     row.message = r.message;
     const double simulated = std::max<long>(r.steps, 1) * s.h;
     row.wall_s = r.verdict == Verdict::NotApplicable ? kNaN : r.wall_s / simulated;
-    const long attempted = r.steps + (r.verdict == Verdict::Ok || r.verdict == Verdict::NotApplicable ? 0 : 1);
+    const long attempted =
+        r.steps + (r.verdict == Verdict::Ok || r.verdict == Verdict::NotApplicable ? 0 : 1);
     row.newton_iters = attempted > 0 ? static_cast<double>(r.newton_iterations) / attempted : 0.0;
-    if (r.verdict == Verdict::Ok && ref) row.error = rms_position_error(r.samples, *ref, s.side, map);
-    say(name + ": h = " + fmt(s.h) + " s, tol = " + fmt(s.tol) + " m/s, n_seg = " +
-        std::to_string(s.n_seg) + ": " + row.failure +
-        (r.verdict == Verdict::Ok ? ", error " + fmt(row.error) : " at step " + std::to_string(r.fail_step)) +
+    if (r.verdict == Verdict::Ok && ref)
+      row.error = rms_position_error(r.samples, *ref, s.side, map);
+    say(name + ": h = " + fmt(s.h) + " s, tol = " + fmt(s.tol) +
+        " m/s, n_seg = " + std::to_string(s.n_seg) + ": " + row.failure +
+        (r.verdict == Verdict::Ok ? ", error " + fmt(row.error)
+                                  : " at step " + std::to_string(r.fail_step)) +
         ", " + fmt(row.wall_s) + " s per simulated s");
     result.rows.push_back(row);
   };
@@ -200,11 +210,12 @@ StudyResult run_study(const SceneDef& scene, const StudyOptions& options) {
   if (result.stopped || (options.stop && (result.stopped = options.stop()))) return result;
   const RunResult fine = run_scene(mesh_ref, run_options);
   result.total_wall_s += fine.wall_s;
-  say("mesh reference: n_seg = " + std::to_string(mesh_ref.n_seg) + ", h = " + fmt(mesh_ref.h) + " s, " +
-      verdict_name(fine.verdict) + ", " + fmt(fine.wall_s) + " s");
+  say("mesh reference: n_seg = " + std::to_string(mesh_ref.n_seg) + ", h = " + fmt(mesh_ref.h) +
+      " s, " + verdict_name(fine.verdict) + ", " + fmt(fine.wall_s) + " s");
   if (fine.verdict != Verdict::Ok)
-    result.reference_failures.push_back("mesh reference (n_seg = " + std::to_string(mesh_ref.n_seg) + ") failed (" +
-                                        verdict_name(fine.verdict) + ": " + fine.message + ")");
+    result.reference_failures.push_back(
+        "mesh reference (n_seg = " + std::to_string(mesh_ref.n_seg) + ") failed (" +
+        verdict_name(fine.verdict) + ": " + fine.message + ")");
   for (int n : n_values) {
     SceneDef s = scene;
     s.n_seg = n;
@@ -226,14 +237,17 @@ StudyResult run_study(const SceneDef& scene, const StudyOptions& options) {
     if (!(result.stopped || (options.stop && (result.stopped = options.stop())))) {
       const RunResult r = run_scene(ref, run_options);
       result.total_wall_s += r.wall_s;
-      say("reference without contact: " + std::string(verdict_name(r.verdict)) + ", " + fmt(r.wall_s) + " s");
+      say("reference without contact: " + std::string(verdict_name(r.verdict)) + ", " +
+          fmt(r.wall_s) + " s");
       if (r.verdict != Verdict::Ok)
-        result.reference_failures.push_back("reference without contact failed (" + std::string(verdict_name(r.verdict)) +
-                                            ": " + r.message + ")");
+        result.reference_failures.push_back("reference without contact failed (" +
+                                            std::string(verdict_name(r.verdict)) + ": " +
+                                            r.message + ")");
       for (double f : plan.implicit_h) {
         SceneDef s = smooth;
         s.h = scene.h * f;
-        add_row(lecture, s, r.verdict == Verdict::Ok ? &r.samples : nullptr, {}, "lecture-no-contact");
+        add_row(lecture, s, r.verdict == Verdict::Ok ? &r.samples : nullptr, {},
+                "lecture-no-contact");
       }
     }
   }
@@ -279,8 +293,8 @@ std::string study_csv(const StudyResult& result) {
     return buf;
   };
   for (const StudyRow& r : result.rows)
-    o << r.method << "," << num(r.h) << "," << num(r.tol) << "," << r.n_seg << "," << num(r.wall_s) << ","
-      << num(r.error) << "," << num(r.newton_iters) << "," << r.failure << "\n";
+    o << r.method << "," << num(r.h) << "," << num(r.tol) << "," << r.n_seg << "," << num(r.wall_s)
+      << "," << num(r.error) << "," << num(r.newton_iters) << "," << r.failure << "\n";
   return o.str();
 }
 

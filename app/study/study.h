@@ -21,15 +21,15 @@ namespace invfree {
 struct StudyOptions {
   bool quick = false;
   std::function<void(const std::string&)> progress;  // one line per run, may be empty
-  std::function<bool()> stop;  // checked between runs (Ctrl-C); may be empty
+  std::function<bool()> stop;                        // checked between runs (Ctrl-C); may be empty
 };
 
 struct StudyRow {
   std::string method;
   double h = 0.0, tol = 0.0;
   int n_seg = 0;
-  double wall_s = 0.0;  // wall-clock seconds per simulated second (over the part that ran)
-  double error = 0.0;   // NaN when the run failed or has no reference
+  double wall_s = 0.0;        // wall-clock seconds per simulated second (over the part that ran)
+  double error = 0.0;         // NaN when the run failed or has no reference
   double newton_iters = 0.0;  // mean Newton iterations per step
   std::string failure;        // verdict: "ok", "penetrated", ... (verdict.h)
   long fail_step = -1;
@@ -37,7 +37,7 @@ struct StudyRow {
 };
 
 struct StudyResult {
-  SceneDef scene;              // the scene as given (before any method's settings)
+  SceneDef scene;  // the scene as given (before any method's settings)
   std::vector<double> sample_times;
   double duration = 0.0;
   double reference_h = 0.0, reference_tol = 0.0;
@@ -45,7 +45,7 @@ struct StudyResult {
   double mesh_reference_h = 0.0;
   std::vector<StudyRow> rows;
   std::vector<std::string> reference_failures;  // one line each, empty when all converged
-  double lecture_slope = 0.0;  // fitted d log(error) / d log(h), lecture's method
+  double lecture_slope = 0.0;                   // fitted d log(error) / d log(h), lecture's method
   // The classic check: the lecture's method on the same scene with contact switched off
   // (rows "lecture-no-contact"), where the motion is smooth and implicit Euler's first
   // order shows at every h swept; with stiff contact it only shows for h far below the

@@ -43,12 +43,15 @@ void add_failure_notes(const StudyResult& r, bool (*in_sweep)(const StudyResult&
 
 Rgb method_color(const std::string& method) {
   // Okabe-Ito, distinguishable with the common colour-vision deficiencies.
-  static const std::map<std::string, Rgb> colors = {
-      {"lecture", {0.00f, 0.45f, 0.70f}},          {"full-eigen-clamp", {0.90f, 0.62f, 0.00f}},
-      {"no-projection", {0.84f, 0.37f, 0.00f}},    {"no-inversion-filter", {0.80f, 0.47f, 0.65f}},
-      {"symplectic-euler", {0.34f, 0.71f, 0.91f}}, {"linear", {0.00f, 0.62f, 0.45f}},
-      {"arap", {0.55f, 0.34f, 0.16f}},             {"stable-neo-hookean", {0.55f, 0.55f, 0.55f}},
-      {"lecture-mesh", {0.00f, 0.45f, 0.70f}}};
+  static const std::map<std::string, Rgb> colors = {{"lecture", {0.00f, 0.45f, 0.70f}},
+                                                    {"full-eigen-clamp", {0.90f, 0.62f, 0.00f}},
+                                                    {"no-projection", {0.84f, 0.37f, 0.00f}},
+                                                    {"no-inversion-filter", {0.80f, 0.47f, 0.65f}},
+                                                    {"symplectic-euler", {0.34f, 0.71f, 0.91f}},
+                                                    {"linear", {0.00f, 0.62f, 0.45f}},
+                                                    {"arap", {0.55f, 0.34f, 0.16f}},
+                                                    {"stable-neo-hookean", {0.55f, 0.55f, 0.55f}},
+                                                    {"lecture-mesh", {0.00f, 0.45f, 0.70f}}};
   auto it = colors.find(method);
   return it == colors.end() ? Rgb{0.2f, 0.2f, 0.2f} : it->second;
 }
@@ -57,7 +60,8 @@ std::vector<size_t> pareto_front(const std::vector<double>& x, const std::vector
   std::vector<size_t> idx;
   for (size_t i = 0; i < std::min(x.size(), y.size()); ++i)
     if (std::isfinite(x[i]) && std::isfinite(y[i])) idx.push_back(i);
-  std::sort(idx.begin(), idx.end(), [&](size_t a, size_t b) { return x[a] < x[b] || (x[a] == x[b] && y[a] < y[b]); });
+  std::sort(idx.begin(), idx.end(),
+            [&](size_t a, size_t b) { return x[a] < x[b] || (x[a] == x[b] && y[a] < y[b]); });
   std::vector<size_t> front;
   double best = INFINITY;
   for (size_t i : idx)
@@ -98,7 +102,8 @@ Image study_chart(const StudyResult& r) {
     s.label = m.label;
     s.color = method_color(m.name);
     for (const StudyRow& row : r.rows)
-      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) && row.error > 0.0) {
+      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) &&
+          row.error > 0.0) {
         s.x.push_back(row.wall_s);
         s.y.push_back(row.error);
       }
@@ -123,17 +128,19 @@ Image study_chart(const StudyResult& r) {
     lo = std::min(lo, row.h);
     hi = std::max(hi, row.h);
   }
-  a.notes.push_back("Error at t = " + join_times(r.sample_times) + " s against a reference of the same model at h = " +
-                    fmt(r.reference_h) + " s, tol = " + fmt(r.reference_tol) + " m/s. Implicit methods: h = " +
-                    fmt(h_hi) + " ... " + fmt(h_lo) + " s; symplectic Euler: h = " + fmt(e_hi) + " ... " +
-                    fmt(e_lo) + " s.");
+  a.notes.push_back("Error at t = " + join_times(r.sample_times) +
+                    " s against a reference of the same model at h = " + fmt(r.reference_h) +
+                    " s, tol = " + fmt(r.reference_tol) +
+                    " m/s. Implicit methods: h = " + fmt(h_hi) + " ... " + fmt(h_lo) +
+                    " s; symplectic Euler: h = " + fmt(e_hi) + " ... " + fmt(e_lo) + " s.");
   add_failure_notes(r, in_h_sweep, "h", a.notes);
   for (const std::string& f : r.reference_failures) a.notes.push_back(f);
 
   // (B) error against h.
   ChartSpec b;
-  b.title = "Convergence: implicit Euler without contact, fitted slope " + fmt(r.smooth_slope, "%.2f") +
-            " (first order = 1); with contact " + fmt(r.lecture_slope, "%.2f");
+  b.title = "Convergence: implicit Euler without contact, fitted slope " +
+            fmt(r.smooth_slope, "%.2f") + " (first order = 1); with contact " +
+            fmt(r.lecture_slope, "%.2f");
   b.x_label = "time step h (s)";
   b.y_label = "RMS node-position error / side length";
   b.log_x = b.log_y = true;
@@ -143,7 +150,8 @@ Image study_chart(const StudyResult& r) {
     s.label = m.label;
     s.color = method_color(m.name);
     for (const StudyRow& row : r.rows)
-      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) && row.error > 0.0) {
+      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) &&
+          row.error > 0.0) {
         s.x.push_back(row.h);
         s.y.push_back(row.error);
       }
@@ -177,15 +185,18 @@ Image study_chart(const StudyResult& r) {
     }
     b.series.push_back(guide);
   }
-  b.notes.push_back("Fitted slopes of log(error) against log(h), lecture's method over all its h: " +
-                    fmt(r.smooth_slope, "%.3f") + " without contact (each against its own reference), " +
-                    fmt(r.lecture_slope, "%.3f") + " on the scene itself (" + fmt(r.lecture_slope_small_h, "%.2f") +
-                    " over its four smallest h).");
-  b.notes.push_back("With contact, the barrier's stiff response at impact (a time scale of about a millisecond) "
-                    "and the numerical damping of the vibrations it starts dominate the error at these h; "
-                    "first order returns only for h well below that time scale.");
-  b.notes.push_back("The neo-Hookean implicit variants share one minimiser per step, so their errors coincide; "
-                    "they differ in cost and in where they fail.");
+  b.notes.push_back(
+      "Fitted slopes of log(error) against log(h), lecture's method over all its h: " +
+      fmt(r.smooth_slope, "%.3f") + " without contact (each against its own reference), " +
+      fmt(r.lecture_slope, "%.3f") + " on the scene itself (" +
+      fmt(r.lecture_slope_small_h, "%.2f") + " over its four smallest h).");
+  b.notes.push_back(
+      "With contact, the barrier's stiff response at impact (a time scale of about a millisecond) "
+      "and the numerical damping of the vibrations it starts dominate the error at these h; "
+      "first order returns only for h well below that time scale.");
+  b.notes.push_back(
+      "The neo-Hookean implicit variants share one minimiser per step, so their errors coincide; "
+      "they differ in cost and in where they fail.");
   return stack_vertical({render_chart(a), render_chart(b)});
 }
 
@@ -204,8 +215,8 @@ Image sweeps_chart(const StudyResult& r) {
     s.color = method_color(m.name);
     std::vector<std::tuple<double, double, double>> pts;  // tol, wall, error
     for (const StudyRow& row : r.rows)
-      if (m.implicit() && row.method == m.name && in_tol_sweep(r, row) && std::isfinite(row.error) &&
-          row.error > 0.0)
+      if (m.implicit() && row.method == m.name && in_tol_sweep(r, row) &&
+          std::isfinite(row.error) && row.error > 0.0)
         pts.emplace_back(row.tol, row.wall_s, row.error);
     std::sort(pts.begin(), pts.end());
     for (const auto& [tol, wall, err] : pts) {
@@ -218,7 +229,8 @@ Image sweeps_chart(const StudyResult& r) {
   for (const StudyRow& row : r.rows)
     if (row.method == "lecture" && in_tol_sweep(r, row)) tol_values.push_back(row.tol);
   std::sort(tol_values.begin(), tol_values.end());
-  c.notes.push_back("Newton stops when |p|_inf / h < tol; tol = " + join_times(tol_values) + " m/s.");
+  c.notes.push_back("Newton stops when |p|_inf / h < tol; tol = " + join_times(tol_values) +
+                    " m/s.");
   {
     double e_lo = INFINITY, e_hi = 0.0, w_lo = INFINITY, w_hi = 0.0, t_lo = 0.0, t_hi = 0.0;
     for (const StudyRow& row : r.rows)
@@ -229,9 +241,10 @@ Image sweeps_chart(const StudyResult& r) {
         if (row.wall_s > w_hi) w_hi = row.wall_s, t_hi = row.tol;
       }
     if (std::isfinite(e_lo))
-      c.notes.push_back("Lecture's method: error " + fmt(e_lo) + " ... " + fmt(e_hi) + " over the tolerances that ran; " +
-                        "wall time " + fmt(w_lo) + " s/s (tol = " + fmt(t_lo) + ") ... " + fmt(w_hi) + " s/s (tol = " +
-                        fmt(t_hi) + ").");
+      c.notes.push_back("Lecture's method: error " + fmt(e_lo) + " ... " + fmt(e_hi) +
+                        " over the tolerances that ran; " + "wall time " + fmt(w_lo) +
+                        " s/s (tol = " + fmt(t_lo) + ") ... " + fmt(w_hi) +
+                        " s/s (tol = " + fmt(t_hi) + ").");
   }
   add_failure_notes(r, in_tol_sweep, "tol", c.notes);
 
@@ -252,8 +265,8 @@ Image sweeps_chart(const StudyResult& r) {
         s.y.push_back(row.error);
       }
       d.notes.push_back("n_seg = " + std::to_string(row.n_seg) + ": " + row.failure +
-                        (std::isfinite(row.error) ? ", error " + fmt(row.error) : std::string()) + ", " +
-                        fmt(row.wall_s) + " s/s");
+                        (std::isfinite(row.error) ? ", error " + fmt(row.error) : std::string()) +
+                        ", " + fmt(row.wall_s) + " s/s");
     }
   d.series.push_back(s);
   d.notes.push_back("Coarse nodes are compared with the same material points of the fine mesh.");

@@ -9,31 +9,43 @@ namespace invfree {
 
 const char* verdict_name(Verdict v) {
   switch (v) {
-    case Verdict::Ok: return "ok";
-    case Verdict::Inverted: return "inverted";
-    case Verdict::Penetrated: return "penetrated";
-    case Verdict::NonFinite: return "non-finite";
-    case Verdict::NewtonFailed: return "newton-failed";
-    case Verdict::BlewUp: return "blew-up";
-    case Verdict::NotApplicable: return "n/a";
+    case Verdict::Ok:
+      return "ok";
+    case Verdict::Inverted:
+      return "inverted";
+    case Verdict::Penetrated:
+      return "penetrated";
+    case Verdict::NonFinite:
+      return "non-finite";
+    case Verdict::NewtonFailed:
+      return "newton-failed";
+    case Verdict::BlewUp:
+      return "blew-up";
+    case Verdict::NotApplicable:
+      return "n/a";
   }
   return "?";
 }
 
 Verdict verdict_from_status(StepStatus s) {
   switch (s) {
-    case StepStatus::Ok: return Verdict::Ok;
+    case StepStatus::Ok:
+      return Verdict::Ok;
     case StepStatus::NewtonFailed:
-    case StepStatus::LinearSolveFailed: return Verdict::NewtonFailed;
-    case StepStatus::NonFinite: return Verdict::NonFinite;
-    case StepStatus::Inverted: return Verdict::Inverted;
-    case StepStatus::Penetrated: return Verdict::Penetrated;
+    case StepStatus::LinearSolveFailed:
+      return Verdict::NewtonFailed;
+    case StepStatus::NonFinite:
+      return Verdict::NonFinite;
+    case StepStatus::Inverted:
+      return Verdict::Inverted;
+    case StepStatus::Penetrated:
+      return Verdict::Penetrated;
   }
   return Verdict::NonFinite;
 }
 
-bool energy_exceeds_budget(double energy, double floor, double initial, double ceiling_work, double factor,
-                           double minimum_budget) {
+bool energy_exceeds_budget(double energy, double floor, double initial, double ceiling_work,
+                           double factor, double minimum_budget) {
   if (!std::isfinite(energy)) return true;
   const double budget = std::max(initial - floor + std::max(ceiling_work, 0.0), minimum_budget);
   return energy - floor > factor * budget;
@@ -81,7 +93,8 @@ void RunMonitor::start(const Simulation& sim, double duration) {
   for (int i = 0; i < sim.mesh.node_count(); ++i) c += sim.x.segment<2>(2 * i);
   box_center = c / sim.mesh.node_count();
   const double g = sim.scene.has_gravity ? sim.scene.gravity.norm() : 0.0;
-  box_radius = 10.0 * L + sim.scene.initial_velocity.norm() * duration + 0.5 * g * duration * duration;
+  box_radius =
+      10.0 * L + sim.scene.initial_velocity.norm() * duration + 0.5 * g * duration * duration;
   const auto det = triangle_det_f(sim);
   started_inverted = std::any_of(det.begin(), det.end(), [](double d) { return !(d > 0.0); });
   recovered = !started_inverted;
@@ -105,8 +118,8 @@ Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
     }
   const double e = total_energy(sim);
   if (energy_exceeds_budget(e, floor, initial_energy, ceiling_work, factor, minimum_budget)) {
-    *why = "energy " + std::to_string(e - floor) + " J above the floor exceeds " + std::to_string(factor) +
-           "x what the start and the ceiling supplied (" +
+    *why = "energy " + std::to_string(e - floor) + " J above the floor exceeds " +
+           std::to_string(factor) + "x what the start and the ceiling supplied (" +
            std::to_string(initial_energy - floor + ceiling_work) + " J)";
     return Verdict::BlewUp;
   }

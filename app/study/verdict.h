@@ -26,8 +26,8 @@ const char* verdict_name(Verdict v);  // "ok", "inverted", ..., "n/a"
 Verdict verdict_from_status(StepStatus s);
 
 // Pure form of the energy criterion (all in joules).
-bool energy_exceeds_budget(double energy, double floor, double initial, double ceiling_work, double factor,
-                           double minimum_budget);
+bool energy_exceeds_budget(double energy, double floor, double initial, double ceiling_work,
+                           double factor, double minimum_budget);
 
 // Tracks one run: call `start` on the initial state and `after_step` after every accepted
 // step; `after_step` returns Ok or BlewUp/Inverted with a reason in `why`.
@@ -42,7 +42,7 @@ struct RunMonitor {
   double box_radius = 0.0;
   Vec2 box_center = Vec2::Zero();
   bool inversion_is_failure = true;  // false: det F <= 0 is allowed (the study, invertible models)
-  bool started_inverted = false;  // an invertible model may start inverted and recover
+  bool started_inverted = false;     // an invertible model may start inverted and recover
   bool recovered = true;
 
   void start(const Simulation& sim, double duration);

@@ -26,7 +26,8 @@ std::vector<Mat2> random_fs(int n) {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> a(-3, 3), s(0.5, 1.5);
   std::vector<Mat2> out;
-  for (int k = 0; k < n; ++k) out.push_back(rotation(a(rng)) * Vec2(s(rng), s(rng)).asDiagonal() * rotation(a(rng)));
+  for (int k = 0; k < n; ++k)
+    out.push_back(rotation(a(rng)) * Vec2(s(rng), s(rng)).asDiagonal() * rotation(a(rng)));
   return out;
 }
 
@@ -43,7 +44,8 @@ void BM_Gradient(benchmark::State& state) {
   const auto fs = random_fs(1024);
   const Mat46 dFdx = deformation_gradient_jacobian(Mat2::Identity() * 4.0);
   for (auto _ : state)
-    for (const Mat2& F : fs) benchmark::DoNotOptimize(TriangleElasticity<M>::gradient(F, dFdx, 0.03, kLame));
+    for (const Mat2& F : fs)
+      benchmark::DoNotOptimize(TriangleElasticity<M>::gradient(F, dFdx, 0.03, kLame));
   state.SetItemsProcessed(state.iterations() * fs.size());
 }
 
@@ -53,7 +55,8 @@ void BM_ProjectedHessian(benchmark::State& state) {
   const Mat46 dFdx = deformation_gradient_jacobian(Mat2::Identity() * 4.0);
   const auto proj = static_cast<HessianProjection>(state.range(0));
   for (auto _ : state)
-    for (const Mat2& F : fs) benchmark::DoNotOptimize(TriangleElasticity<M>::hessian(F, dFdx, 0.03, kLame, proj));
+    for (const Mat2& F : fs)
+      benchmark::DoNotOptimize(TriangleElasticity<M>::hessian(F, dFdx, 0.03, kLame, proj));
   state.SetItemsProcessed(state.iterations() * fs.size());
 }
 
@@ -78,7 +81,8 @@ void BM_FusedGradientHessian(benchmark::State& state) {
   Mat6 H;
   for (auto _ : state)
     for (const Mat2& F : fs) {
-      TriangleElasticity<M>::gradient_hessian(F, IB, 0.03, kLame, HessianProjection::Diagonal, g, H);
+      TriangleElasticity<M>::gradient_hessian(F, IB, 0.03, kLame, HessianProjection::Diagonal, g,
+                                              H);
       benchmark::DoNotOptimize(H);
     }
   state.SetItemsProcessed(state.iterations() * fs.size());
@@ -144,7 +148,13 @@ void BM_CompressStep(benchmark::State& state) {
   }
   state.counters["newton_per_step"] = steps ? double(iterations) / steps : 0.0;
 }
-BENCHMARK(BM_CompressStep)->Arg(4)->Arg(8)->Arg(16)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CompressStep)
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(16)
+    ->Arg(64)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace invfree

@@ -30,11 +30,13 @@ void check_error(const std::string& error, std::string_view prefix) {
   require(!error.empty(), "empty error", "");
   require(error.find('\n') == std::string::npos && error.find('\r') == std::string::npos,
           "error is not one line", error);
-  require(error.compare(0, prefix.size(), prefix) == 0, "error does not start with its source", error);
+  require(error.compare(0, prefix.size(), prefix) == 0, "error does not start with its source",
+          error);
 }
 
 void check_scene(const invfree::SceneDef& scene) {
-  require(invfree::validate_scene(scene).empty(), "accepted scene fails validation", invfree::validate_scene(scene));
+  require(invfree::validate_scene(scene).empty(), "accepted scene fails validation",
+          invfree::validate_scene(scene));
   const std::string text = invfree::scene_to_toml(scene);
   const invfree::SceneLoad back = invfree::parse_scene_toml(text, "roundtrip.toml");
   require(back.scene.has_value(), "scene_to_toml output does not load", back.error + "\n" + text);
@@ -78,7 +80,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const size_t end = rest.find('\n');
     check_override(base, rest.substr(0, end));
     invfree::SceneDef next = base;
-    if (invfree::apply_override(next, rest.substr(0, end)).empty()) base = next;  // overrides accumulate
+    if (invfree::apply_override(next, rest.substr(0, end)).empty())
+      base = next;  // overrides accumulate
     rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
   }
   return 0;

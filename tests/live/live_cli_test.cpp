@@ -19,7 +19,9 @@ namespace {
 using Result = test::CommandResult;
 
 // Runs invfree with no display at all (DISPLAY and WAYLAND_DISPLAY removed).
-Result run_headless(const std::string& args) { return test::run_command(INVFREE_EXE, args, true); }
+Result run_headless(const std::string& args) {
+  return test::run_command(INVFREE_EXE, args, true);
+}
 
 int lines(const std::string& s) {
   int n = 0;
@@ -58,9 +60,11 @@ TEST(LiveCli, HelpListsEveryKey) {
 TEST(LiveCli, BadInputIsRejectedBeforeAnyWindow) {
   const std::string dir = ::testing::TempDir();
   { std::ofstream(dir + "/live_bad_nu.toml") << "[material]\nE = 1e5\nnu = 0.7\n"; }
-  const std::vector<std::string> cases = {"live --scene nosuchscene", "live --set material.nu=0.5", "live --frames -1",
-                                 "live --size 10x10", "live --size big", "live " + dir + "/live_bad_nu.toml",
-                                 "live --steps-per-frame 0"};
+  const std::vector<std::string> cases = {
+      "live --scene nosuchscene", "live --set material.nu=0.5",
+      "live --frames -1",         "live --size 10x10",
+      "live --size big",          "live " + dir + "/live_bad_nu.toml",
+      "live --steps-per-frame 0"};
   for (const std::string& args : cases) {
     const Result r = run_headless(args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;

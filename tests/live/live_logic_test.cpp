@@ -2,6 +2,7 @@
 // edits, the log slider mapping, the stats histories, the key table, output naming, and
 // the simulation controller (changes in the middle of a compression keep the state
 // valid; a failed step pauses and keeps the last good state).
+#include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,8 +10,6 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-
-#include <GLFW/glfw3.h>
 
 #include "app/live/key_bindings.h"
 #include "app/live/live_controller.h"
@@ -23,7 +22,9 @@
 namespace invfree::live {
 namespace {
 
-bool in_range(double v, Range r) { return v >= r.lo && v <= r.hi; }
+bool in_range(double v, Range r) {
+  return v >= r.lo && v <= r.hi;
+}
 
 TEST(LiveParams, ClampKeepsInRangeValuesAndNotesTheOthers) {
   Clamped c = clamp_to_range(0.01, 0.02, kTimeStepRange, "h", "s");
@@ -43,15 +44,20 @@ TEST(LiveParams, ClampKeepsInRangeValuesAndNotesTheOthers) {
 }
 
 TEST(LiveParams, EveryMaterialEditStaysValid) {
-  const double requests[] = {-1e9, -1.0, 0.0, 1e-3, 0.3, 0.499, 0.5, 0.7, 1.0, 50.0, 1e3,
-                             3.5e4, 1e6, 1e8, 1e9, 1e12, NAN, INFINITY, -INFINITY};
-  const Lame starts[] = {lame_from_young_poisson(1e5, 0.4), {kMuRange.lo, 0.0}, {kMuRange.hi, kLambdaRange.hi},
-                         {kMuRange.lo, kLambdaRange.hi}, {kMuRange.hi, 0.0}};
+  const double requests[] = {-1e9, -1.0,  0.0, 1e-3, 0.3, 0.499, 0.5, 0.7,      1.0,      50.0,
+                             1e3,  3.5e4, 1e6, 1e8,  1e9, 1e12,  NAN, INFINITY, -INFINITY};
+  const Lame starts[] = {lame_from_young_poisson(1e5, 0.4),
+                         {kMuRange.lo, 0.0},
+                         {kMuRange.hi, kLambdaRange.hi},
+                         {kMuRange.lo, kLambdaRange.hi},
+                         {kMuRange.hi, 0.0}};
   for (const Lame& start : starts) {
     for (double r : requests) {
-      for (const MaterialEdit& e : {edit_mu(start, r), edit_lambda(start, r), edit_young(start, r), edit_poisson(start, r)}) {
+      for (const MaterialEdit& e : {edit_mu(start, r), edit_lambda(start, r), edit_young(start, r),
+                                    edit_poisson(start, r)}) {
         EXPECT_TRUE(in_range(e.lame.mu, kMuRange)) << e.lame.mu << " from request " << r;
-        EXPECT_TRUE(in_range(e.lame.lambda, kLambdaRange)) << e.lame.lambda << " from request " << r;
+        EXPECT_TRUE(in_range(e.lame.lambda, kLambdaRange))
+            << e.lame.lambda << " from request " << r;
         double E, nu;
         young_poisson_from_lame(e.lame, &E, &nu);
         EXPECT_TRUE(std::isfinite(E) && E > 0.0);
@@ -247,9 +253,9 @@ TEST(LiveController, EditsInTheMiddleOfACompressionKeepTheStateValid) {
   };
   // Jumps across the range the demo runs at (far stiffer squares make the penalty ceiling
   // hit Newton's cap: that pauses with a banner, tested below).
-  const Edit edits[] = {{"mu soft", edit_mu, 1e2},          {"mu stiff", edit_mu, 3e5},
-                        {"lambda 0", edit_lambda, 0.0},     {"lambda stiff", edit_lambda, 3e6},
-                        {"nu 0.45", edit_poisson, 0.45},    {"E soft", edit_young, 1e3},
+  const Edit edits[] = {{"mu soft", edit_mu, 1e2},       {"mu stiff", edit_mu, 3e5},
+                        {"lambda 0", edit_lambda, 0.0},  {"lambda stiff", edit_lambda, 3e6},
+                        {"nu 0.45", edit_poisson, 0.45}, {"E soft", edit_young, 1e3},
                         {"back", edit_young, 1e5}};
   for (const Edit& e : edits) {
     SceneDef next = lc.settings();

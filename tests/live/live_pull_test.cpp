@@ -57,8 +57,11 @@ TEST(PullSpring, GradientAndHessianMatchFiniteDifferences) {
     VecX g;
     ip_gradient_hessian(f.p, f.z, g, f.hess);
     const double eps = 1e-7;
-    const std::function<double(const VecX&)> energy = [&](const VecX& z) { return ip_energy(f.p, z); };
-    EXPECT_LT(test::relative_error(g, test::fd_gradient(energy, f.z, eps)), 1e-6) << "seed " << seed;
+    const std::function<double(const VecX&)> energy = [&](const VecX& z) {
+      return ip_energy(f.p, z);
+    };
+    EXPECT_LT(test::relative_error(g, test::fd_gradient(energy, f.z, eps)), 1e-6)
+        << "seed " << seed;
     Eigen::MatrixXd fdh(f.z.size(), f.z.size());
     SparseHessian scratch = build_sparse_hessian(f.mesh, false);
     for (int k = 0; k < f.z.size(); ++k) {

@@ -6,14 +6,13 @@
 //    mu and the picture;
 //  - grabbing a node with the mouse pulls it toward the cursor, and only while dragging;
 //  - the keyboard table drives play/pause and the panel.
+#include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
-
-#include <GLFW/glfw3.h>
 
 #include "app/live/live_app.h"
 #include "tests/render/image_compare.h"
@@ -40,7 +39,8 @@ test::RgbImage rgb(const Image& img) {
   out.width = img.width;
   out.height = img.height;
   out.rgb.reserve(static_cast<size_t>(img.width) * img.height * 3);
-  for (size_t i = 0; i < img.rgba.size(); i += 4) out.rgb.insert(out.rgb.end(), {img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]});
+  for (size_t i = 0; i < img.rgba.size(); i += 4)
+    out.rgb.insert(out.rgb.end(), {img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]});
   return out;
 }
 
@@ -101,15 +101,16 @@ TEST(LiveWindow, InjectedMouseDragsTheMuSlider) {
     return in;
   };
   // Hover, press, drag to the right, release: as a hand on the mouse would, frame by frame.
-  const Injection script[] = {at(0.3f, false), at(0.3f, true), at(0.6f, true), at(0.9f, true), at(0.9f, false),
-                              at(0.9f, false)};
+  const Injection script[] = {at(0.3f, false), at(0.3f, true),  at(0.6f, true),
+                              at(0.9f, true),  at(0.9f, false), at(0.9f, false)};
   for (const Injection& in : script) app->frame(&in);
   app->frame(nullptr, &after);
   const double mu1 = app->controller().simulation().scene.lame.mu;
   // 90% of the way along the log scale from 1e2 to 1e7 Pa is about 3e6 Pa.
   EXPECT_GT(mu1, 1e6) << "mu was " << mu0;
   EXPECT_LT(mu1, 1e7);
-  EXPECT_EQ(app->controller().simulation().scene.lame.lambda, app->controller().scenes()[0].scene.lame.lambda);
+  EXPECT_EQ(app->controller().simulation().scene.lame.lambda,
+            app->controller().scenes()[0].scene.lame.lambda);
   // The picture changed: the slider, the side panel's mu, E and nu (paused: same shape).
   EXPECT_GT(differing_pixels(before, after), 100);
 
@@ -249,7 +250,8 @@ TEST(LiveWindow, DraggingANodePullsItOnlyWhileHeld) {
   const Vec2 now = app->controller().simulation().x.segment<2>(2 * node);
   // Held up against gravity by the spring, close to the cursor (the default stiffness
   // lets the square's weight stretch it by about a tenth of a metre).
-  EXPECT_LT((now - target).norm(), 0.5 * (start - target).norm()) << now.transpose() << " " << target.transpose();
+  EXPECT_LT((now - target).norm(), 0.5 * (start - target).norm())
+      << now.transpose() << " " << target.transpose();
   EXPECT_GT(now.x(), start.x());
   EXPECT_GT(now.y(), start.y());
   in.down[0] = false;
@@ -281,7 +283,8 @@ TEST(LiveWindow, WheelZoomsAndFRestoresTheView) {
   app->frame(&drag);
   drag.down[1] = false;
   app->frame(&drag, &panned);
-  EXPECT_GT(differing_pixels(zoomed, panned), 2000);  // the square moved (the hatching is fixed to the screen)
+  EXPECT_GT(differing_pixels(zoomed, panned),
+            2000);  // the square moved (the hatching is fixed to the screen)
   Injection f;
   f.keys = {GLFW_KEY_F};
   app->frame(&f);
@@ -332,7 +335,8 @@ TEST(LiveWindow, TypedInvalidPoissonRatioIsClampedWithANote) {
   young_poisson_from_lame(app->controller().settings().lame, &E, &nu);
   EXPECT_NEAR(nu, 0.499, 1e-9);
   EXPECT_NEAR(E, 1e5, 1e-3);  // E kept
-  EXPECT_NE(app->controller().note.find("nu = 0.7 is outside"), std::string::npos) << app->controller().note;
+  EXPECT_NE(app->controller().note.find("nu = 0.7 is outside"), std::string::npos)
+      << app->controller().note;
   app->frame(nullptr, &after);
   EXPECT_TRUE(app->widget_rects().count("note"));  // the note is on screen
   EXPECT_GT(differing_pixels(before, after), 500);

@@ -4,14 +4,13 @@
 // requires zero calls to the allocator for the rest of a whole run, for every solver
 // backend, a scene without ceiling and the explicit integrator. Worker threads count too.
 #include <gtest/gtest.h>
+#include <link.h>
 
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
-#include <link.h>
-
 #include <cstdio>
+#include <cstring>
 
 #include "core/parallel.h"
 #include "core/simulation.h"
@@ -39,7 +38,9 @@ struct Range {
 Range g_runtime[2];
 int find_runtimes(dl_phdr_info* info, std::size_t, void*) {
   if (!info->dlpi_name) return 0;
-  const int which = std::strstr(info->dlpi_name, "libgomp") ? 0 : std::strstr(info->dlpi_name, "libopenblas") ? 1 : -1;
+  const int which = std::strstr(info->dlpi_name, "libgomp")       ? 0
+                    : std::strstr(info->dlpi_name, "libopenblas") ? 1
+                                                                  : -1;
   if (which < 0) return 0;
   for (int i = 0; i < info->dlpi_phnum; ++i) {
     const auto& ph = info->dlpi_phdr[i];
@@ -54,7 +55,8 @@ int find_runtimes(dl_phdr_info* info, std::size_t, void*) {
 inline void count(void* caller) {
   if (!g_counting.load(std::memory_order_relaxed)) return;
   const auto a = reinterpret_cast<std::uintptr_t>(caller);
-  if ((a >= g_runtime[0].begin && a < g_runtime[0].end) || (a >= g_runtime[1].begin && a < g_runtime[1].end))
+  if ((a >= g_runtime[0].begin && a < g_runtime[0].end) ||
+      (a >= g_runtime[1].begin && a < g_runtime[1].end))
     g_runtime_allocations.fetch_add(1, std::memory_order_relaxed);
   else
     g_allocations.fetch_add(1, std::memory_order_relaxed);
@@ -89,16 +91,18 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
   *out = p;
   return 0;
 }
-void free(void* p) { __libc_free(p); }
+void free(void* p) {
+  __libc_free(p);
+}
 }
 
 namespace invfree {
 namespace {
 
 struct Counts {
-  long ours = 0;                // outside the two runtimes, in any step: must be 0
+  long ours = 0;                   // outside the two runtimes, in any step: must be 0
   long without_factorization = 0;  // anything at all in a step that reused the factor: must be 0
-  long runtime = 0;             // libgomp / OpenBLAS records, in refactorising steps only
+  long runtime = 0;                // libgomp / OpenBLAS records, in refactorising steps only
   long factorizations = 0;
 };
 
@@ -117,8 +121,10 @@ Counts allocations_during_run(SceneDef scene, int warmup, int steps) {
     if (r.status != StepStatus::Ok) failed_at = k;
     c.factorizations += r.factorizations;
     c.ours += g_allocations;
-    if (r.factorizations == 0) c.without_factorization += g_allocations + g_runtime_allocations;
-    else c.runtime += g_runtime_allocations;
+    if (r.factorizations == 0)
+      c.without_factorization += g_allocations + g_runtime_allocations;
+    else
+      c.runtime += g_runtime_allocations;
   }
   EXPECT_EQ(failed_at, -1) << scene.name;
   return c;
@@ -134,8 +140,8 @@ TEST(NoAllocation, CountingAllocatorSeesAllocations) {
 }
 
 TEST(NoAllocation, ImplicitStepsWithEveryLinearSolver) {
-  for (LinearSolverKind kind :
-       {LinearSolverKind::Auto, LinearSolverKind::Ldlt, LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
+  for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Ldlt,
+                                LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
     SceneDef s = *find_builtin_scene("compress");
     s.n_seg = 12;
     s.linear_solver = kind;
@@ -167,8 +173,9 @@ TEST(NoAllocation, LargeMeshWithParallelAssemblyAndCholmod) {
   EXPECT_EQ(c.ours, 0);
   EXPECT_EQ(c.without_factorization, 0);
   EXPECT_LT(c.factorizations, 147 / 4) << "the factorisation should be reused across steps";
-  std::printf("  %ld refactorisations in 147 steps; runtime (OpenMP, OpenBLAS) allocations in them: %ld\n",
-              c.factorizations, c.runtime);
+  std::printf(
+      "  %ld refactorisations in 147 steps; runtime (OpenMP, OpenBLAS) allocations in them: %ld\n",
+      c.factorizations, c.runtime);
 }
 
 TEST(NoAllocation, OtherScenesAndTheExplicitIntegrator) {

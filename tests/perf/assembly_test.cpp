@@ -37,7 +37,8 @@ TEST(TriangleKernel, MatchesTheDenseChainRule) {
         Mat2 IB;
         IB << 1 + 0.3 * u(rng), 0.2 * u(rng), 0.2 * u(rng), 1 + 0.3 * u(rng);
         const Mat46 dFdx = deformation_gradient_jacobian(IB);
-        for (auto proj : {HessianProjection::Diagonal, HessianProjection::Full, HessianProjection::None}) {
+        for (auto proj :
+             {HessianProjection::Diagonal, HessianProjection::Full, HessianProjection::None}) {
           Vec6 g;
           Mat6 H;
           TriangleElasticity<M>::gradient_hessian(F, IB, 0.7, kLame, proj, g, H);
@@ -67,7 +68,8 @@ TEST(AssemblyPlan, NoTwoChunksOfAColourShareANode) {
         const int end = std::min(mesh.triangle_count(), begin + h.chunk_size);
         for (int t = begin; t < end; ++t)
           for (int v : mesh.triangles[t]) {
-            EXPECT_TRUE(owner[v] == -1 || owner[v] == chunk) << "n_seg " << n_seg << " colour " << c;
+            EXPECT_TRUE(owner[v] == -1 || owner[v] == chunk)
+                << "n_seg " << n_seg << " colour " << c;
             owner[v] = chunk;
           }
       }
@@ -113,9 +115,11 @@ TEST(ParallelAssembly, BitIdenticalForAnyThreadCount) {
   }
   set_thread_count(0);
   for (std::size_t k = 1; k < gradients.size(); ++k) {
-    EXPECT_TRUE(same_bits(gradients[k], gradients[0])) << "gradient differs with " << k + 1 << " threads";
+    EXPECT_TRUE(same_bits(gradients[k], gradients[0]))
+        << "gradient differs with " << k + 1 << " threads";
     EXPECT_TRUE(same_bits(values[k], values[0])) << "Hessian differs with " << k + 1 << " threads";
-    EXPECT_EQ(std::memcmp(&energies[k], &energies[0], sizeof(double)), 0) << "energy, " << k + 1 << " threads";
+    EXPECT_EQ(std::memcmp(&energies[k], &energies[0], sizeof(double)), 0)
+        << "energy, " << k + 1 << " threads";
   }
   // And the parallel energy is the sum it should be (against a plain serial sum).
   EXPECT_GT(std::abs(energies[0]), 0.0);

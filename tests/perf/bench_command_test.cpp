@@ -20,10 +20,11 @@ std::vector<std::string> split(const std::string& line, char sep) {
 TEST(BenchCommand, WritesTheTableAndTheChart) {
   const std::string dir = ::testing::TempDir() + "/bench_" + std::to_string(::getpid());
   std::filesystem::remove_all(dir);
-  const test::ProcessResult r =
-      test::run_invfree({"bench", "--sizes", "2,4,6", "--steps", "20", "--out", dir, "--threads", "2"});
+  const test::ProcessResult r = test::run_invfree(
+      {"bench", "--sizes", "2,4,6", "--steps", "20", "--out", dir, "--threads", "2"});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("x the reference"), std::string::npos) << "n_seg 4 is a reference size: " << r.out;
+  EXPECT_NE(r.out.find("x the reference"), std::string::npos)
+      << "n_seg 4 is a reference size: " << r.out;
   EXPECT_NE(r.out.find("fitted slope"), std::string::npos) << r.out;
 
   std::istringstream csv(test::slurp(dir + "/bench.csv"));
@@ -67,7 +68,8 @@ TEST(BenchCommand, WritesTheTableAndTheChart) {
 
 TEST(BenchCommand, BadSizesAreBadInput) {
   for (const char* sizes : {"4,x", "0", "4,,8", "-3", "99999999"}) {
-    const test::ProcessResult r = test::run_invfree({"bench", "--sizes", sizes, "--out", ::testing::TempDir()});
+    const test::ProcessResult r =
+        test::run_invfree({"bench", "--sizes", sizes, "--out", ::testing::TempDir()});
     EXPECT_EQ(r.code, 2) << sizes;
     EXPECT_NE(r.err.find("--sizes"), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;

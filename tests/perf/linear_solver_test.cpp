@@ -34,7 +34,8 @@ struct System {
     b = -g;
     lambda_min = sim.workspace.min_node_mass;
     if (sim.problem.ceiling_on)
-      lambda_min = std::min(lambda_min, sim.problem.ceiling_fixed ? 1.0 : sim.problem.ceiling_stiffness);
+      lambda_min =
+          std::min(lambda_min, sim.problem.ceiling_fixed ? 1.0 : sim.problem.ceiling_stiffness);
   }
 };
 
@@ -47,8 +48,8 @@ VecX dense_solve(const Eigen::SparseMatrix<double>& H, const VecX& b) {
 TEST(LinearSolver, EveryBackendSolvesTheNewtonSystem) {
   const System sys(12);
   const VecX exact = dense_solve(sys.H, sys.b);
-  for (LinearSolverKind kind :
-       {LinearSolverKind::Ldlt, LinearSolverKind::Cholmod, LinearSolverKind::Pcg, LinearSolverKind::Auto}) {
+  for (LinearSolverKind kind : {LinearSolverKind::Ldlt, LinearSolverKind::Cholmod,
+                                LinearSolverKind::Pcg, LinearSolverKind::Auto}) {
     LinearSolver solver;
     solver.setup(sys.H, kind, true);
     LinearSolveStats stats;
@@ -95,7 +96,8 @@ TEST(Pcg, NeverStopsNewtonWhereTheExactDirectionWouldNot) {
     const bool pcg_stops = x.lpNorm<Eigen::Infinity>() < request.threshold;
     if (pcg_stops) {
       ++stops;
-      EXPECT_LT(p_inf, request.threshold) << "ratio " << ratio << ": PCG stopped Newton, the exact p would not";
+      EXPECT_LT(p_inf, request.threshold)
+          << "ratio " << ratio << ": PCG stopped Newton, the exact p would not";
     } else {
       ++goes;
     }
@@ -142,15 +144,16 @@ double max_speed(const Simulation& sim) {
 }
 
 TEST(Simulation, EveryLinearSolverKeepsTheInvariantsAndComesToRest) {
-  for (LinearSolverKind kind :
-       {LinearSolverKind::Auto, LinearSolverKind::Ldlt, LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
+  for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Ldlt,
+                                LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
     SceneDef s = *find_builtin_scene("compress");
     s.n_seg = 10;
     s.linear_solver = kind;
     Simulation sim = make_simulation(s);
     for (int k = 0; k < 600; ++k) {
       const StepReport r = step(sim);
-      ASSERT_EQ(r.status, StepStatus::Ok) << linear_solver_name(kind) << " step " << k << ": " << r.message;
+      ASSERT_EQ(r.status, StepStatus::Ok)
+          << linear_solver_name(kind) << " step " << k << ": " << r.message;
       ASSERT_LT(r.residual, s.tol);
       for (const auto& t : sim.mesh.triangles) {
         const Vec2 a = sim.x.segment<2>(2 * t[1]) - sim.x.segment<2>(2 * t[0]);
@@ -178,7 +181,8 @@ TEST(Simulation, ExactHessianRunsWithEverySolverThatAcceptsIt) {
     Simulation sim = make_simulation(s);
     for (int k = 0; k < 150; ++k) {
       const StepReport r = step(sim);
-      ASSERT_EQ(r.status, StepStatus::Ok) << linear_solver_name(kind) << " step " << k << ": " << r.message;
+      ASSERT_EQ(r.status, StepStatus::Ok)
+          << linear_solver_name(kind) << " step " << k << ": " << r.message;
     }
   }
 }

@@ -47,7 +47,8 @@ bool bit_identical(const VecX& a, const VecX& b) {
 
 std::vector<SceneDef> scenes_under_test() {
   std::vector<SceneDef> out = {*find_builtin_scene("compress"), *find_builtin_scene("drop")};
-  SceneDef jittered = *find_builtin_scene("compress");  // irregular mesh, another model and projection
+  SceneDef jittered =
+      *find_builtin_scene("compress");  // irregular mesh, another model and projection
   EXPECT_EQ(apply_override(jittered, "mesh.n_seg=12"), "");
   EXPECT_EQ(apply_override(jittered, "mesh.jitter=0.2"), "");
   EXPECT_EQ(apply_override(jittered, "material.model=stable-neo-hookean"), "");
@@ -73,17 +74,20 @@ struct CliRun {
   std::string obj, csv;
 };
 
-CliRun run_cli(const std::string& dir, const std::vector<std::string>& extra_args, int threads, int steps) {
+CliRun run_cli(const std::string& dir, const std::vector<std::string>& extra_args, int threads,
+               int steps) {
   std::filesystem::remove_all(dir);
-  std::vector<std::string> args = {"simulate", "--steps", std::to_string(steps), "--obj", dir + "/obj",
-                                   "--csv", dir + "/run.csv"};
+  std::vector<std::string> args = {"simulate",   "--steps", std::to_string(steps), "--obj",
+                                   dir + "/obj", "--csv",   dir + "/run.csv"};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
-  const test::ProcessResult r = test::run_invfree(args, {"INVFREE_THREADS=" + std::to_string(threads)});
+  const test::ProcessResult r =
+      test::run_invfree(args, {"INVFREE_THREADS=" + std::to_string(threads)});
   EXPECT_EQ(r.code, 0) << r.err;
   CliRun out;
   out.obj = test::slurp(dir + "/obj/" + std::to_string(steps) + ".obj");
   std::istringstream csv(test::slurp(dir + "/run.csv"));
-  for (std::string line; std::getline(csv, line);) out.csv += line.substr(0, line.rfind(',')) + "\n";
+  for (std::string line; std::getline(csv, line);)
+    out.csv += line.substr(0, line.rfind(',')) + "\n";
   std::filesystem::remove_all(dir);
   return out;
 }
@@ -100,8 +104,10 @@ TEST(Determinism, ProcessesAndThreadCountsAgreeBitForBit) {
     ASSERT_GT(one.csv.size(), 150u * 20u);
     for (int threads : {1, 2, 3}) {
       const CliRun other = run_cli(base + "_" + std::to_string(threads) + "b", v, threads, 150);
-      EXPECT_EQ(other.obj, one.obj) << "positions differ with " << threads << " threads: " << v.back();
-      EXPECT_EQ(other.csv, one.csv) << "per-step table differs with " << threads << " threads: " << v.back();
+      EXPECT_EQ(other.obj, one.obj)
+          << "positions differ with " << threads << " threads: " << v.back();
+      EXPECT_EQ(other.csv, one.csv)
+          << "per-step table differs with " << threads << " threads: " << v.back();
     }
   }
 }
@@ -129,7 +135,8 @@ TEST(Determinism, StoredRunHash) {
   const std::string actual = hex(fnv1a64(sim.x.data(), sim.x.size()));
   EXPECT_EQ(actual, expected) << "final positions of '" << scene_name << "' after " << steps
                               << " steps hash to " << actual << ", stored " << expected
-                              << ". If the numerics changed on purpose, see " << path << " to regenerate.";
+                              << ". If the numerics changed on purpose, see " << path
+                              << " to regenerate.";
 }
 
 }  // namespace

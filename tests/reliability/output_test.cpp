@@ -27,7 +27,8 @@ using test::run_invfree;
 using test::slurp;
 
 std::string fresh_dir(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/output_" + name + "_" + std::to_string(::getpid());
+  const std::string dir =
+      ::testing::TempDir() + "/output_" + name + "_" + std::to_string(::getpid());
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -59,7 +60,9 @@ int expect_only_complete_objs(const std::string& dir, int nodes, int triangles) 
   return objs;
 }
 
-bool one_line(const std::string& err) { return std::count(err.begin(), err.end(), '\n') == 1; }
+bool one_line(const std::string& err) {
+  return std::count(err.begin(), err.end(), '\n') == 1;
+}
 
 // A tmpfs of `size` mounted at `dir` for the scope's lifetime, when this process may.
 class TinyFilesystem {
@@ -75,7 +78,8 @@ class TinyFilesystem {
   bool mounted() const { return mounted_; }
   const std::string& reason() const { return reason_; }
   void remount_read_only() {
-    ASSERT_EQ(::mount("tmpfs", dir_.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, nullptr), 0) << std::strerror(errno);
+    ASSERT_EQ(::mount("tmpfs", dir_.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, nullptr), 0)
+        << std::strerror(errno);
   }
 
  private:
@@ -108,12 +112,16 @@ TEST(AtomicFiles, WriteReplaceAndAbandon) {
   EXPECT_EQ(names, (std::vector<std::string>{"a.txt", "c.csv"}));
   // Errors name the path and leave nothing.
   const std::string e1 = write_file_atomically(dir + "/missing/x.txt", "x");
-  EXPECT_NE(e1.find(dir + "/missing/x.txt: cannot create file: No such file or directory"), std::string::npos) << e1;
+  EXPECT_NE(e1.find(dir + "/missing/x.txt: cannot create file: No such file or directory"),
+            std::string::npos)
+      << e1;
   EXPECT_NE(check_output_file(dir).find("is a directory"), std::string::npos);
-  EXPECT_NE(prepare_output_directory(dir + "/a.txt", false, false).find("exists and is not a directory"),
-            std::string::npos);
+  EXPECT_NE(
+      prepare_output_directory(dir + "/a.txt", false, false).find("exists and is not a directory"),
+      std::string::npos);
   bool refused = false;
-  EXPECT_NE(prepare_output_directory(dir, true, false, &refused).find("not empty (use --force"), std::string::npos);
+  EXPECT_NE(prepare_output_directory(dir, true, false, &refused).find("not empty (use --force"),
+            std::string::npos);
   EXPECT_TRUE(refused);
   EXPECT_EQ(prepare_output_directory(dir, true, true, &refused), "");
   EXPECT_FALSE(refused);
@@ -123,13 +131,16 @@ TEST(AtomicFiles, WriteReplaceAndAbandon) {
 TEST(FullDisk, TinyTmpfsGivesAClearErrorAndNoTruncatedFile) {
   const std::string dir = fresh_dir("tmpfs");
   TinyFilesystem tiny(dir, "size=48k");
-  if (!tiny.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (" << tiny.reason() << "); FileSizeLimit covers it";
+  if (!tiny.mounted())
+    GTEST_SKIP() << "cannot mount a tmpfs here (" << tiny.reason() << "); FileSizeLimit covers it";
   // n_seg 4: 25 nodes, 32 triangles, ~1.8 kB per OBJ: the disk fills after a few dozen.
-  const auto r = run_invfree({"simulate", "--steps", "300", "--obj", dir + "/obj", "--csv", dir + "/run.csv"});
+  const auto r =
+      run_invfree({"simulate", "--steps", "300", "--obj", dir + "/obj", "--csv", dir + "/run.csv"});
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
   EXPECT_NE(r.err.find("No space left on device (disk full)"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find(dir + "/obj/"), std::string::npos) << "the error must name the file: " << r.err;
+  EXPECT_NE(r.err.find(dir + "/obj/"), std::string::npos)
+      << "the error must name the file: " << r.err;
   const int objs = expect_only_complete_objs(dir + "/obj", 25, 32);
   EXPECT_GT(objs, 3);
   EXPECT_LT(objs, 300);
@@ -141,12 +152,14 @@ TEST(FullDisk, FileSizeLimit) {
   const std::string dir = fresh_dir("fsize");
   // ulimit -f 8: no file may exceed 8 KiB; an n_seg 16 OBJ is ~20 kB, so the very
   // first one fails (EFBIG, reported like a full disk rather than killing the process).
-  auto r = run_invfree({"simulate", "--steps", "5", "--set", "mesh.n_seg=16", "--obj", dir + "/obj"}, {},
-                       "ulimit -f 8;");
+  auto r =
+      run_invfree({"simulate", "--steps", "5", "--set", "mesh.n_seg=16", "--obj", dir + "/obj"}, {},
+                  "ulimit -f 8;");
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
   EXPECT_NE(r.err.find(dir + "/obj/0.obj: write failed: File too large (file-size limit reached)"),
-            std::string::npos) << r.err;
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(expect_only_complete_objs(dir + "/obj", 289, 512), 0);
   // A CSV that outgrows the limit: no table under its final name, no temporary left.
   r = run_invfree({"simulate", "--steps", "2000", "--csv", dir + "/run.csv"}, {}, "ulimit -f 16;");
@@ -162,10 +175,13 @@ TEST(UnwritableOutput, ClearErrorBeforeAnyStep) {
   auto r = run_invfree({"simulate", "--steps", "5", "--obj", "/proc/invfree_no/obj"});
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
-  EXPECT_NE(r.err.find("/proc/invfree_no/obj: cannot create directory"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/proc/invfree_no/obj: cannot create directory"), std::string::npos)
+      << r.err;
   r = run_invfree({"simulate", "--steps", "5", "--csv", "/proc/invfree.csv"});
   EXPECT_EQ(r.code, 4) << r.err;
-  EXPECT_NE(r.err.find("/proc/invfree.csv: /proc: cannot create files in this directory"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/proc/invfree.csv: /proc: cannot create files in this directory"),
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(r.out, "") << "the error comes before any step";
 
   // A read-only directory: a read-only tmpfs for root (who ignores permission bits),
@@ -181,7 +197,8 @@ TEST(UnwritableOutput, ClearErrorBeforeAnyStep) {
   r = run_invfree({"simulate", "--steps", "5", "--obj", dir + "/ro"});
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
-  EXPECT_NE(r.err.find(dir + "/ro: cannot create files in this directory"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(dir + "/ro: cannot create files in this directory"), std::string::npos)
+      << r.err;
   r = run_invfree({"simulate", "--steps", "5", "--obj", dir + "/ro/sub"});
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_NE(r.err.find(dir + "/ro/sub: cannot create directory"), std::string::npos) << r.err;
@@ -197,7 +214,8 @@ TEST(ExistingOutput, NonEmptyDirectoryRefusedUnlessForce) {
   auto r = run_invfree({"simulate", "--steps", "3", "--obj", dir});
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
-  EXPECT_NE(r.err.find(dir + ": directory is not empty (use --force to write into it anyway)"), std::string::npos)
+  EXPECT_NE(r.err.find(dir + ": directory is not empty (use --force to write into it anyway)"),
+            std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(dir + "/0.obj"));
   r = run_invfree({"simulate", "--steps", "3", "--obj", dir, "--force"});
@@ -217,13 +235,15 @@ TEST(ExistingOutput, NonEmptyDirectoryRefusedUnlessForce) {
 // Starts a long run, waits for `min_objs` OBJ files, sends `sig`, and checks the result.
 void interrupt_run(int sig) {
   const std::string dir = fresh_dir("interrupt_" + std::to_string(sig));
-  test::Process p({INVFREE_EXE, "simulate", "--steps", "100000000", "--obj", dir + "/obj", "--csv", dir + "/run.csv"});
+  test::Process p({INVFREE_EXE, "simulate", "--steps", "100000000", "--obj", dir + "/obj", "--csv",
+                   dir + "/run.csv"});
   ASSERT_GT(p.pid(), 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   auto count_objs = [&] {
     int n = 0;
     std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir + "/obj", ec)) n += e.path().extension() == ".obj";
+    for (const auto& e : fs::directory_iterator(dir + "/obj", ec))
+      n += e.path().extension() == ".obj";
     return n;
   };
   while (count_objs() < 40 && std::chrono::steady_clock::now() < deadline)
@@ -241,7 +261,8 @@ void interrupt_run(int sig) {
   const std::string csv = slurp(dir + "/run.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), last + 1) << "header + one row per step";
   EXPECT_NE(csv.find("\n" + std::to_string(last) + ","), std::string::npos);
-  EXPECT_NE(r.out.find(std::to_string(last) + " steps"), std::string::npos) << "the summary still prints";
+  EXPECT_NE(r.out.find(std::to_string(last) + " steps"), std::string::npos)
+      << "the summary still prints";
   expect_only_complete_objs(dir, 0, 0);  // no temporary CSV
   fs::remove_all(dir);
 }
@@ -259,20 +280,23 @@ int expect_only_complete_pngs(const std::string& dir) {
     EXPECT_GT(png.size(), 20u) << name;
     if (png.size() <= 20u) continue;
     EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << name;
-    EXPECT_EQ(png.substr(png.size() - 8), std::string("IEND\xae\x42\x60\x82", 8)) << name << " is truncated";
+    EXPECT_EQ(png.substr(png.size() - 8), std::string("IEND\xae\x42\x60\x82", 8))
+        << name << " is truncated";
   }
   return frames;
 }
 
 TEST(Interrupt, CtrlCDuringARenderLeavesOnlyCompleteFrames) {
   const std::string dir = fresh_dir("render_interrupt");
-  test::Process p({INVFREE_EXE, "render", "--frames", "100000", "--size", "160x120", "--out", dir + "/frames"});
+  test::Process p(
+      {INVFREE_EXE, "render", "--frames", "100000", "--size", "160x120", "--out", dir + "/frames"});
   ASSERT_GT(p.pid(), 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   auto count = [&] {
     int n = 0;
     std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir + "/frames", ec)) n += e.path().extension() == ".png";
+    for (const auto& e : fs::directory_iterator(dir + "/frames", ec))
+      n += e.path().extension() == ".png";
     return n;
   };
   while (count() < 10 && std::chrono::steady_clock::now() < deadline)
@@ -297,15 +321,20 @@ TEST(FullDisk, RenderOnATinyTmpfs) {
   const std::string dir = fresh_dir("render_tmpfs");
   TinyFilesystem tiny(dir, "size=256k");
   if (!tiny.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (" << tiny.reason() << ")";
-  const auto r = run_invfree({"render", "--frames", "400", "--size", "320x240", "--out", dir + "/frames"});
+  const auto r =
+      run_invfree({"render", "--frames", "400", "--size", "320x240", "--out", dir + "/frames"});
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
   EXPECT_NE(r.err.find("No space left on device (disk full)"), std::string::npos) << r.err;
   EXPECT_GT(expect_only_complete_pngs(dir + "/frames"), 0);
 }
 
-TEST(Interrupt, CtrlCKeepsOnlyCompleteOutput) { interrupt_run(SIGINT); }
-TEST(Interrupt, SigtermKeepsOnlyCompleteOutput) { interrupt_run(SIGTERM); }
+TEST(Interrupt, CtrlCKeepsOnlyCompleteOutput) {
+  interrupt_run(SIGINT);
+}
+TEST(Interrupt, SigtermKeepsOnlyCompleteOutput) {
+  interrupt_run(SIGTERM);
+}
 
 }  // namespace
 }  // namespace invfree

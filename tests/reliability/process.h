@@ -21,7 +21,7 @@ extern char** environ;
 namespace invfree::test {
 
 struct ProcessResult {
-  int code = -1;    // exit code, or -signal when killed by a signal
+  int code = -1;  // exit code, or -signal when killed by a signal
   std::string out, err;
 };
 
@@ -64,8 +64,10 @@ class Process {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, out_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 1, out_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    posix_spawn_file_actions_addopen(&actions, 2, err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
     // The child must start with default signal dispositions whatever the test runner set.
     posix_spawnattr_t attr;
     posix_spawnattr_init(&attr);
@@ -109,7 +111,8 @@ class Process {
   std::string out_path_, err_path_;
 };
 
-inline ProcessResult run_invfree(const std::vector<std::string>& args, const std::vector<std::string>& env = {},
+inline ProcessResult run_invfree(const std::vector<std::string>& args,
+                                 const std::vector<std::string>& env = {},
                                  const std::string& shell_prefix = "") {
   std::vector<std::string> full = {INVFREE_EXE};
   full.insert(full.end(), args.begin(), args.end());

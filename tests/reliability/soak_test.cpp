@@ -62,13 +62,15 @@ long resident_kib() {
 
 // Independent invariant check; returns "" or what is broken.
 std::string broken_invariant(const Simulation& sim) {
-  if (!sim.x.allFinite() || !sim.v.allFinite() || !std::isfinite(sim.ceiling_y) || !std::isfinite(sim.time))
+  if (!sim.x.allFinite() || !sim.v.allFinite() || !std::isfinite(sim.ceiling_y) ||
+      !std::isfinite(sim.time))
     return "non-finite state";
   for (int t = 0; t < sim.mesh.triangle_count(); ++t) {
     const auto& tri = sim.mesh.triangles[t];
     const Vec2 a = sim.x.segment<2>(2 * tri[1]) - sim.x.segment<2>(2 * tri[0]);
     const Vec2 b = sim.x.segment<2>(2 * tri[2]) - sim.x.segment<2>(2 * tri[0]);
-    if (!(a.x() * b.y() - a.y() * b.x() > 0.0)) return "triangle " + std::to_string(t) + " has det F <= 0";
+    if (!(a.x() * b.y() - a.y() * b.x() > 0.0))
+      return "triangle " + std::to_string(t) + " has det F <= 0";
   }
   for (int i = 0; i < sim.mesh.node_count(); ++i) {
     const double y = sim.x[2 * i + 1];
@@ -127,7 +129,8 @@ TEST(Soak, TenThousandStepsWithChangingParameters) {
     const double e_start = ip_energy(sim.problem, z_start);
     const double noise = 64.0 * std::numeric_limits<double>::epsilon() * (std::abs(e_start) + 1.0) *
                          std::max(1, r.newton_iterations);
-    if (!std::isfinite(r.energy) || !std::isfinite(e_start)) violation("non-finite incremental potential");
+    if (!std::isfinite(r.energy) || !std::isfinite(e_start))
+      violation("non-finite incremental potential");
     if (!(r.energy <= e_start + noise))
       violation("incremental potential rose within the step: " + std::to_string(e_start) + " -> " +
                 std::to_string(r.energy));
@@ -136,10 +139,13 @@ TEST(Soak, TenThousandStepsWithChangingParameters) {
   }
   const long rss_end = resident_kib();
   const size_t heap_end = mallinfo2().uordblks;
-  std::printf("soak: %d steps, %ld parameter changes, %ld invariant violations, %.2f Newton iterations/step (max %d), "
-              "ceiling down to %.3f and up again to %.3f, RSS %ld -> %ld KiB, heap in use %zu -> %zu bytes\n",
-              kSteps, changes, violations, double(newton_iterations) / kSteps, max_iterations, lowest_ceiling, highest_after_press,
-              rss_warm, rss_end, heap_warm, heap_end);
+  std::printf(
+      "soak: %d steps, %ld parameter changes, %ld invariant violations, %.2f Newton "
+      "iterations/step (max %d), "
+      "ceiling down to %.3f and up again to %.3f, RSS %ld -> %ld KiB, heap in use %zu -> %zu "
+      "bytes\n",
+      kSteps, changes, violations, double(newton_iterations) / kSteps, max_iterations,
+      lowest_ceiling, highest_after_press, rss_warm, rss_end, heap_warm, heap_end);
   EXPECT_EQ(violations, 0) << "first: " << first_violation;
   EXPECT_EQ(sim.step_count, kSteps);
   EXPECT_EQ(changes, kSteps / kEvery - 1);

@@ -54,7 +54,8 @@ ImageDiff compare_images(const RgbImage& a, const RgbImage& e, int threshold) {
   d.pixels = static_cast<long>(a.width) * a.height;
   for (long p = 0; p < d.pixels; ++p) {
     int worst = 0;
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a.rgb[3 * p + c]) - int(e.rgb[3 * p + c])));
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(int(a.rgb[3 * p + c]) - int(e.rgb[3 * p + c])));
     d.max_channel_diff = std::max(d.max_channel_diff, worst);
     if (worst > threshold) ++d.differing;
   }
@@ -65,7 +66,8 @@ RgbImage difference_image(const RgbImage& a, const RgbImage& e, int threshold) {
   RgbImage d{e.width, e.height, std::vector<std::uint8_t>(e.rgb.size())};
   for (size_t p = 0; p + 2 < e.rgb.size() && p + 2 < a.rgb.size(); p += 3) {
     int worst = 0;
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a.rgb[p + c]) - int(e.rgb[p + c])));
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(int(a.rgb[p + c]) - int(e.rgb[p + c])));
     const int grey = (e.rgb[p] + e.rgb[p + 1] + e.rgb[p + 2]) / 3;
     const int faint = 200 + grey / 5;  // the picture, faded, for orientation
     const int amp = std::min(255, worst * 16);
@@ -79,8 +81,8 @@ RgbImage difference_image(const RgbImage& a, const RgbImage& e, int threshold) {
   return d;
 }
 
-std::string check_golden(const RgbImage& actual, const std::string& name, const std::string& golden_dir,
-                         const std::string& failure_dir) {
+std::string check_golden(const RgbImage& actual, const std::string& name,
+                         const std::string& golden_dir, const std::string& failure_dir) {
   const std::string golden = golden_dir + "/" + name + ".png";
   const char* update = std::getenv("INVFREE_UPDATE_GOLDENS");
   if (update != nullptr && std::string(update) == "1") {
@@ -92,7 +94,8 @@ std::string check_golden(const RgbImage& actual, const std::string& name, const 
   RgbImage expected;
   if (!load_png(golden, &expected)) {
     save_png(actual_path, actual);
-    return "golden " + golden + " is missing (or unreadable); the actual frame is in " + actual_path +
+    return "golden " + golden + " is missing (or unreadable); the actual frame is in " +
+           actual_path +
            ". Look at it; if it is right, make the goldens with tests/render/regenerate_goldens.sh";
   }
   const ImageDiff d = compare_images(actual, expected);
@@ -102,13 +105,15 @@ std::string check_golden(const RgbImage& actual, const std::string& name, const 
   save_png(actual_path, actual);
   save_png(expected_path, expected);
   if (!d.same_size)
-    return name + ": size " + std::to_string(actual.width) + "x" + std::to_string(actual.height) + " differs from the golden's " +
-           std::to_string(expected.width) + "x" + std::to_string(expected.height) + "; actual: " + actual_path +
+    return name + ": size " + std::to_string(actual.width) + "x" + std::to_string(actual.height) +
+           " differs from the golden's " + std::to_string(expected.width) + "x" +
+           std::to_string(expected.height) + "; actual: " + actual_path +
            ", expected: " + expected_path;
   save_png(diff_path, difference_image(actual, expected));
   return name + ": " + std::to_string(d.differing) + " of " + std::to_string(d.pixels) +
-         " pixels differ by more than 5/255 (allowed: " + std::to_string(static_cast<long>(0.001 * d.pixels)) +
-         ", largest channel difference " + std::to_string(d.max_channel_diff) + "/255); actual: " + actual_path +
+         " pixels differ by more than 5/255 (allowed: " +
+         std::to_string(static_cast<long>(0.001 * d.pixels)) + ", largest channel difference " +
+         std::to_string(d.max_channel_diff) + "/255); actual: " + actual_path +
          ", expected: " + expected_path + ", amplified difference: " + diff_path +
          ". If the change is intended, regenerate with tests/render/regenerate_goldens.sh";
 }

@@ -23,8 +23,8 @@ std::string save_png(const std::string& path, const RgbImage& image);  // "" or 
 
 struct ImageDiff {
   bool same_size = false;
-  long pixels = 0;         // pixels compared
-  long differing = 0;      // pixels differing by more than the threshold in some channel
+  long pixels = 0;     // pixels compared
+  long differing = 0;  // pixels differing by more than the threshold in some channel
   int max_channel_diff = 0;
   bool matches(double max_fraction = 0.001) const {
     return same_size && differing <= static_cast<long>(max_fraction * pixels);
@@ -40,7 +40,7 @@ RgbImage difference_image(const RgbImage& actual, const RgbImage& expected, int 
 // INVFREE_UPDATE_GOLDENS=1 it writes the golden instead. Returns "" when it matches (or
 // was written); otherwise a message with the counts, the paths of
 // `failure_dir/name_{actual,expected,diff}.png`, and for a missing golden how to make it.
-std::string check_golden(const RgbImage& actual, const std::string& name, const std::string& golden_dir,
-                         const std::string& failure_dir);
+std::string check_golden(const RgbImage& actual, const std::string& name,
+                         const std::string& golden_dir, const std::string& failure_dir);
 
 }  // namespace invfree::test

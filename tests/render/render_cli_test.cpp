@@ -28,7 +28,8 @@ CommandResult run(const std::string& args, const std::string& env = "") {
 }
 
 std::string fresh_dir(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/render_cli_" + name + "_" + std::to_string(::getpid());
+  const std::string dir =
+      ::testing::TempDir() + "/render_cli_" + name + "_" + std::to_string(::getpid());
   fs::remove_all(dir);
   return dir;
 }
@@ -48,11 +49,12 @@ TEST(RenderCli, WritesFramesAndFrameZeroIsTheInitialState) {
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
   EXPECT_NE(r.out.find("3 frames 960x540"), std::string::npos) << r.out;
   // Exactly the frames: no temporary or partial file left behind.
-  EXPECT_EQ(files_in(dir), (std::vector<std::string>{"frame_000000.png", "frame_000001.png", "frame_000002.png"}));
+  EXPECT_EQ(files_in(dir),
+            (std::vector<std::string>{"frame_000000.png", "frame_000001.png", "frame_000002.png"}));
   invfree::test::RgbImage frame0;
   ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000000.png", &frame0));
-  const std::string message =
-      invfree::test::check_golden(frame0, "compress_t0", INVFREE_GOLDEN_DIR, INVFREE_GOLDEN_FAILURE_DIR "/cli");
+  const std::string message = invfree::test::check_golden(frame0, "compress_t0", INVFREE_GOLDEN_DIR,
+                                                          INVFREE_GOLDEN_FAILURE_DIR "/cli");
   if (std::getenv("INVFREE_UPDATE_GOLDENS") == nullptr) {
     EXPECT_EQ(message, "");
   }
@@ -76,8 +78,9 @@ TEST(RenderCli, RefusesANonEmptyDirectoryUnlessForced) {
 
 TEST(RenderCli, BadInputIsOneLineAndExitTwo) {
   const std::string dir = fresh_dir("bad");
-  for (const std::string args : {"--size 12x12", "--size wide", "--size 1280x", "--frames 0", "--steps-per-frame 0",
-                                 "--scene nosuchscene", "--set material.nu=0.7", "--fps 0"}) {
+  for (const std::string args :
+       {"--size 12x12", "--size wide", "--size 1280x", "--frames 0", "--steps-per-frame 0",
+        "--scene nosuchscene", "--set material.nu=0.7", "--fps 0"}) {
     const CommandResult r = run("render --out " + dir + " " + args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
@@ -88,7 +91,8 @@ TEST(RenderCli, BadInputIsOneLineAndExitTwo) {
 
 TEST(RenderCli, Mp4WithoutFfmpegSaysSoBeforeRendering) {
   const std::string dir = fresh_dir("noffmpeg");
-  const CommandResult r = run("render --frames 2 --size 320x180 --mp4 --out " + dir, "PATH=/nonexistent");
+  const CommandResult r =
+      run("render --frames 2 --size 320x180 --mp4 --out " + dir, "PATH=/nonexistent");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("ffmpeg"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/frame_000000.png"));
@@ -102,8 +106,12 @@ TEST(RenderCli, Mp4WithFfmpegHasEvenDimensions) {
   ASSERT_EQ(r.code, 0) << r.err;
   ASSERT_TRUE(fs::exists(dir + "/movie.mp4"));
   const std::string probe = dir + "/probe.txt";
-  ASSERT_EQ(std::system(("ffprobe -v error -select_streams v:0 -show_entries stream=width,height,pix_fmt,nb_frames "
-                         "-of default=noprint_wrappers=1 " + dir + "/movie.mp4 >" + probe).c_str()), 0);
+  ASSERT_EQ(std::system(("ffprobe -v error -select_streams v:0 -show_entries "
+                         "stream=width,height,pix_fmt,nb_frames "
+                         "-of default=noprint_wrappers=1 " +
+                         dir + "/movie.mp4 >" + probe)
+                            .c_str()),
+            0);
   const std::string info = slurp(probe);
   EXPECT_NE(info.find("width=322"), std::string::npos) << info;
   EXPECT_NE(info.find("height=182"), std::string::npos) << info;
@@ -113,7 +121,8 @@ TEST(RenderCli, Mp4WithFfmpegHasEvenDimensions) {
 
 TEST(RenderCli, FailedStepKeepsTheFramesBeforeItAndExitsThree) {
   const std::string dir = fresh_dir("fail");
-  const CommandResult r = run("render --frames 5 --size 320x180 --set time.max_newton=1 --set time.tol=1e-14 --out " + dir);
+  const CommandResult r = run(
+      "render --frames 5 --size 320x180 --set time.max_newton=1 --set time.tol=1e-14 --out " + dir);
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("step 1 failed"), std::string::npos) << r.err;
   EXPECT_EQ(files_in(dir), std::vector<std::string>{"frame_000000.png"});

@@ -62,12 +62,14 @@ SceneDef scene(const std::string& name, const std::vector<std::string>& override
 }
 
 void run_to(Simulation& sim, long step_count) {
-  while (sim.step_count < step_count) ASSERT_EQ(step(sim).status, StepStatus::Ok) << "step " << sim.step_count + 1;
+  while (sim.step_count < step_count)
+    ASSERT_EQ(step(sim).status, StepStatus::Ok) << "step " << sim.step_count + 1;
 }
 
 double ground_gap(const Simulation& sim) {
   double gap = INFINITY;
-  for (int i = 0; i < sim.mesh.node_count(); ++i) gap = std::min(gap, sim.x[2 * i + 1] - sim.scene.ground_y);
+  for (int i = 0; i < sim.mesh.node_count(); ++i)
+    gap = std::min(gap, sim.x[2 * i + 1] - sim.scene.ground_y);
   return gap;
 }
 
@@ -125,8 +127,8 @@ TEST(RenderGolden, LinearElasticityInverted) {
   // at 8 m/s turns triangles near the ground inside out; they are drawn in the inverted
   // colour, on top of their neighbours.
   constexpr long kStep = 23;
-  Simulation sim = make_simulation(
-      scene("compress", {"material.model=linear", "material.E=1e4", "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
+  Simulation sim = make_simulation(scene("compress", {"material.model=linear", "material.E=1e4",
+                                                      "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
   run_to(sim, kStep);
   const auto det = triangle_det_f(sim);
   EXPECT_GT(std::count_if(det.begin(), det.end(), [](double d) { return d <= 0.0; }), 0);

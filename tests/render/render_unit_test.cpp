@@ -79,7 +79,9 @@ TEST(Camera, PanelOnTheRightOrNone) {
 
 TEST(TextAtlas, DecodesUtf8AndReplacesBrokenBytes) {
   EXPECT_EQ(decode_utf8("μ = λ ≤ 1"), U"μ = λ ≤ 1");
-  EXPECT_EQ(decode_utf8("a\xff" "b"), U"a?b");
+  EXPECT_EQ(decode_utf8("a\xff"
+                        "b"),
+            U"a?b");
   EXPECT_EQ(decode_utf8("\xce"), U"?");  // truncated sequence
 }
 

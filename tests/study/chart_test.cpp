@@ -29,7 +29,8 @@ bool is_white(const Image& img, int x, int y) {
 TEST(Raster, HorizontalLineCoversItsWidthAndNothingElse) {
   Image img = make_image(100, 60, kWhite);
   draw_line(img, {10.0, 30.0}, {90.0, 30.0}, 4.0, kRed);  // covers rows 28..31 fully
-  for (int y = 28; y <= 31; ++y) EXPECT_EQ(pixel_rgb(img, 50, y), (std::array<int, 3>{255, 0, 0})) << y;
+  for (int y = 28; y <= 31; ++y)
+    EXPECT_EQ(pixel_rgb(img, 50, y), (std::array<int, 3>{255, 0, 0})) << y;
   EXPECT_TRUE(is_white(img, 50, 26));
   EXPECT_TRUE(is_white(img, 50, 33));
   EXPECT_TRUE(is_white(img, 5, 30)) << "round cap ends 2 px past the end point";
@@ -67,7 +68,8 @@ TEST(Raster, MeshHasNoSeamsBetweenTriangles) {
   Image img = make_image(40, 40, kWhite);
   // Two triangles of one colour sharing the diagonal of a square.
   fill_mesh(img, {{5, 5}, {35, 5}, {35, 35}, {5, 35}}, {{0, 1, 2}, {0, 2, 3}}, {kRed, kRed});
-  for (int i = 6; i < 34; ++i) EXPECT_EQ(pixel_rgb(img, i, i), (std::array<int, 3>{255, 0, 0})) << i;
+  for (int i = 6; i < 34; ++i)
+    EXPECT_EQ(pixel_rgb(img, i, i), (std::array<int, 3>{255, 0, 0})) << i;
   EXPECT_TRUE(is_white(img, 2, 20));
 }
 
@@ -87,7 +89,8 @@ TEST(Raster, TextInksWhereItIsDrawn) {
   EXPECT_NEAR(right, 10 + text_width("Wg 10\u207b\u00b3 \u03bd", 24), 3.0);
   EXPECT_LT(text_width("ii", 20), text_width("WW", 20));
   EXPECT_NEAR(text_width("abc", 40), 2.0 * text_width("abc", 20), 1.0);
-  const auto lines = wrap_text("one two three four five six", 20, text_width("one two three", 20) + 1);
+  const auto lines =
+      wrap_text("one two three four five six", 20, text_width("one two three", 20) + 1);
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0], "one two three");
 }
@@ -114,7 +117,8 @@ TEST(Axis, LogTicksAreDecadesWithMinorTicksBetween) {
     }
   }
   ASSERT_EQ(decades.size(), 6u);
-  for (size_t i = 0; i < decades.size(); ++i) EXPECT_NEAR(decades[i], std::pow(10.0, -3.0 + i), 1e-15);
+  for (size_t i = 0; i < decades.size(); ++i)
+    EXPECT_NEAR(decades[i], std::pow(10.0, -3.0 + i), 1e-15);
   EXPECT_EQ(minor, expected_minor);
   EXPECT_GE(minor, 5 * 8) << "2..9 in each of the five whole decades";
 }
@@ -151,7 +155,8 @@ TEST(Chart, LogAxisPlacesDecadesEvenly) {
   ASSERT_GE(row, 0) << "no marker drawn";
   int run_start = -1;
   for (int x = 0; x <= img.width; ++x) {
-    const bool red = x < img.width && pixel_rgb(img, x, row)[0] > 200 && pixel_rgb(img, x, row)[1] < 80;
+    const bool red =
+        x < img.width && pixel_rgb(img, x, row)[0] > 200 && pixel_rgb(img, x, row)[1] < 80;
     if (red && run_start < 0) run_start = x;
     if (!red && run_start >= 0) {
       centres.push_back(0.5 * (run_start + x - 1));
@@ -186,7 +191,8 @@ TEST(Png, RoundTripsThroughAnIndependentDecoder) {
   Image img = make_image(37, 23, {0.2f, 0.4f, 0.6f});
   draw_line(img, {0, 0}, {36, 22}, 2.0, kRed);
   img.rgba[4 * (5 * 37 + 7) + 1] = 123;
-  const std::string path = (std::filesystem::temp_directory_path() / "invfree_chart_test.png").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "invfree_chart_test.png").string();
   ASSERT_EQ(write_png(path, img), "");
   int w = 0, h = 0, c = 0;
   unsigned char* data = stbi_load(path.c_str(), &w, &h, &c, 4);

@@ -1,10 +1,11 @@
 // The study's accuracy measure: RMS node-position error relative to the side, the node
 // map between nested meshes, and the log-log slope fit.
+#include "app/study/error.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "app/study/error.h"
 #include "core/mesh.h"
 
 namespace invfree {
@@ -36,7 +37,8 @@ TEST(ErrorMetric, IsRootMeanSquareOverNodes) {
 TEST(ErrorMetric, MismatchedRunsAreNotANumber) {
   const VecX a = VecX::Zero(8), b = VecX::Zero(10);
   EXPECT_TRUE(std::isnan(rms_position_error({a}, {b}, 1.0)));
-  EXPECT_TRUE(std::isnan(rms_position_error({a, a}, {a}, 1.0))) << "a run that stopped early has fewer samples";
+  EXPECT_TRUE(std::isnan(rms_position_error({a, a}, {a}, 1.0)))
+      << "a run that stopped early has fewer samples";
   EXPECT_TRUE(std::isnan(rms_position_error({}, {}, 1.0)));
 }
 

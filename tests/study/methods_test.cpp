@@ -1,11 +1,12 @@
 // The method table (each method is only scene settings) and the embedded stress scenes.
+#include "app/study/methods.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <map>
 #include <set>
 
-#include "app/study/methods.h"
 #include "app/study/stress_scenes.h"
 #include "core/scene_file.h"
 
@@ -59,14 +60,16 @@ TEST(Methods, SettingsAreTheIssuesFamilies) {
   EXPECT_EQ(with("arap").model, Model::Arap);
   EXPECT_EQ(with("stable-neo-hookean").model, Model::StableNeoHookean);
   EXPECT_EQ(method_command_line(*find_method("no-projection")),
-            "--set material.model=neo-hookean --set solver.projection=none --set solver.inversion_filter=true "
+            "--set material.model=neo-hookean --set solver.projection=none --set "
+            "solver.inversion_filter=true "
             "--set solver.integrator=implicit-euler --set solver.step_expansion=true "
             "--set solver.friction_flip_damping=true");
 }
 
 TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
   std::set<std::string> on_disk;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes")) {
     const std::string name = e.path().stem().string();
     if (name.rfind("stress-", 0) == 0 && e.path().extension() == ".toml") on_disk.insert(name);
   }
@@ -79,7 +82,8 @@ TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
     ASSERT_TRUE(scene) << error;
     EXPECT_EQ(scene->name, s.name);
     // The file on disk is the very text that was embedded.
-    const SceneLoad file = load_scene(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes/" + s.name + ".toml");
+    const SceneLoad file =
+        load_scene(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes/" + s.name + ".toml");
     ASSERT_TRUE(file.scene) << file.error;
     EXPECT_TRUE(*file.scene == *scene) << s.name << ": rebuild after editing a stress scene";
   }
@@ -112,7 +116,8 @@ TEST(StressScenes, EachChangesTheDemoTheWayItsNameSays) {
   EXPECT_GT(s["stress-jitter"].jitter, 0.0);
   SceneDef inverted = s["stress-jitter-inverted"];
   inverted.model = Model::NeoHookean;
-  EXPECT_NE(validate_scene(inverted), "") << "the inverted start must be one neo-Hookean cannot run";
+  EXPECT_NE(validate_scene(inverted), "")
+      << "the inverted start must be one neo-Hookean cannot run";
   SceneDef jitter = s["stress-jitter"];
   jitter.model = Model::NeoHookean;
   EXPECT_EQ(validate_scene(jitter), "");

@@ -3,13 +3,13 @@
 // stress scene it can start, implicit Euler shows first order where the motion is smooth,
 // and bad input exits 2 / an unwritable output 4.
 #include <gtest/gtest.h>
-
-#include <cmath>
-#include <cstdio>
-#include <algorithm>
-#include <cstdlib>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -38,7 +38,8 @@ std::string slurp(const fs::path& p) {
 
 CliRun run(const std::string& args, const fs::path& dir) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(INVFREE_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd =
+      std::string(INVFREE_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -48,7 +49,8 @@ CliRun run(const std::string& args, const fs::path& dir) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("invfree_study_test_" + name + "_" + std::to_string(::getpid()));
+  const fs::path d =
+      fs::temp_directory_path() / ("invfree_study_test_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -67,7 +69,9 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   return rows;
 }
 
-bool is_png(const fs::path& p) { return slurp(p).rfind("\x89PNG\r\n\x1a\n", 0) == 0; }
+bool is_png(const fs::path& p) {
+  return slurp(p).rfind("\x89PNG\r\n\x1a\n", 0) == 0;
+}
 
 TEST(StudyCommand, QuickStudyWritesTheTableAndTheCharts) {
   const fs::path dir = fresh_dir("study");
@@ -78,8 +82,8 @@ TEST(StudyCommand, QuickStudyWritesTheTableAndTheCharts) {
   EXPECT_TRUE(is_png(dir / "study-sweeps.png"));
   const auto rows = read_csv(dir / "study.csv");
   ASSERT_GT(rows.size(), 40u);
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"method", "h", "tol", "n_seg", "wall_s", "error", "newton_iters",
-                                               "failure"}));
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"method", "h", "tol", "n_seg", "wall_s", "error",
+                                               "newton_iters", "failure"}));
   std::map<std::string, int> per_method;
   std::vector<double> smooth_h, smooth_err;
   for (size_t i = 1; i < rows.size(); ++i) {
@@ -97,8 +101,9 @@ TEST(StudyCommand, QuickStudyWritesTheTableAndTheCharts) {
       smooth_err.push_back(std::stod(rows[i][5]));
     }
   }
-  for (const char* m : {"lecture", "full-eigen-clamp", "no-projection", "no-inversion-filter", "symplectic-euler",
-                        "linear", "arap", "stable-neo-hookean", "lecture-mesh", "lecture-no-contact"})
+  for (const char* m :
+       {"lecture", "full-eigen-clamp", "no-projection", "no-inversion-filter", "symplectic-euler",
+        "linear", "arap", "stable-neo-hookean", "lecture-mesh", "lecture-no-contact"})
     EXPECT_GE(per_method[m], 2) << m;
   // The classic check: implicit Euler is first order on the smooth, contact-free motion.
   ASSERT_GE(smooth_h.size(), 4u);
@@ -114,9 +119,10 @@ TEST(StabilityCommand, QuickSweepClassifiesEveryCell) {
   const std::string md = slurp(dir / "stability.md");
   EXPECT_NE(md.find("| method |"), std::string::npos);
   const auto rows = read_csv(dir / "stability.csv");
-  ASSERT_EQ(rows[0], (std::vector<std::string>{"method", "scene", "verdict", "fail_step", "wall_s"}));
-  const std::vector<std::string> verdicts = {"ok", "inverted", "penetrated", "non-finite",
-                                             "newton-failed", "blew-up", "n/a"};
+  ASSERT_EQ(rows[0],
+            (std::vector<std::string>{"method", "scene", "verdict", "fail_step", "wall_s"}));
+  const std::vector<std::string> verdicts = {
+      "ok", "inverted", "penetrated", "non-finite", "newton-failed", "blew-up", "n/a"};
   int lecture_cells = 0, failures = 0;
   for (size_t i = 1; i < rows.size(); ++i) {
     ASSERT_EQ(rows[i].size(), 5u) << i;

@@ -1,5 +1,7 @@
 // Run classification: the names, the step-status mapping, the energy criterion, the
 // bounding box, inversion (including an inverted start that recovers) and whole runs.
+#include "app/study/verdict.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,7 +10,6 @@
 #include "app/study/methods.h"
 #include "app/study/run.h"
 #include "app/study/stress_scenes.h"
-#include "app/study/verdict.h"
 #include "core/scene_file.h"
 
 namespace invfree {
@@ -69,7 +70,8 @@ TEST(RunMonitor, FlagsNodesFarOutsideTheScene) {
   RunMonitor m;
   m.start(sim, 1.0);
   std::string why;
-  sim.x[0] += 50.0;  // one node 50 m away: elastic energy alone would trip too, so check the message
+  sim.x[0] +=
+      50.0;  // one node 50 m away: elastic energy alone would trip too, so check the message
   EXPECT_EQ(m.after_step(sim, &why), Verdict::BlewUp);
   EXPECT_NE(why.find("bounding box"), std::string::npos) << why;
 }
@@ -136,7 +138,8 @@ TEST(RunScene, LecturesMethodRunsTheDemoAndSamplesItsTimes) {
   ASSERT_EQ(r.samples.size(), 2u);
   double top = -1e9;
   for (int i = 1; i < r.samples[0].size(); i += 2) top = std::max(top, r.samples[0][i]);
-  EXPECT_NEAR(top, 0.5 - 0.5 * 9.81 * 0.1 * 0.1, 0.01) << "free fall for 0.1 s (implicit Euler: O(h) off)";
+  EXPECT_NEAR(top, 0.5 - 0.5 * 9.81 * 0.1 * 0.1, 0.01)
+      << "free fall for 0.1 s (implicit Euler: O(h) off)";
   EXPECT_GT(r.wall_s, 0.0);
   EXPECT_GE(r.newton_iterations, 50);
 }
