@@ -130,6 +130,23 @@ void install_cholmod_pool() {
   });
 }
 
+// A CHOLMOD header over H's own arrays (no copy): CHOLMOD reads its lower triangle.
+cholmod_sparse cholmod_view(const SpMat& a) {
+  cholmod_sparse s{};
+  s.nrow = s.ncol = static_cast<std::size_t>(a.rows());
+  s.nzmax = static_cast<std::size_t>(a.nonZeros());
+  s.p = const_cast<int*>(a.outerIndexPtr());
+  s.i = const_cast<int*>(a.innerIndexPtr());
+  s.x = const_cast<double*>(a.valuePtr());
+  s.stype = -1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
 // ---- LDL^T (core/sparse_ldlt.h) on a fill-reducing ordering ------------------------------
 struct LdltBackend {
   SparseLdlt ldlt;
@@ -159,18 +176,7 @@ struct LdltBackend {
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_METIS;
     c.postorder = 1;
-    cholmod_sparse view{};
-    view.nrow = view.ncol = static_cast<std::size_t>(a.rows());
-    view.nzmax = static_cast<std::size_t>(a.nonZeros());
-    view.p = const_cast<int*>(a.outerIndexPtr());
-    view.i = const_cast<int*>(a.innerIndexPtr());
-    view.x = const_cast<double*>(a.valuePtr());
-    view.stype = -1;
-    view.itype = CHOLMOD_INT;
-    view.xtype = CHOLMOD_REAL;
-    view.dtype = CHOLMOD_DOUBLE;
-    view.sorted = 1;
-    view.packed = 1;
+    cholmod_sparse view = cholmod_view(a);
     cholmod_factor* f = cholmod_analyze(&view, &c);
     const bool ok = f && c.status == CHOLMOD_OK && c.selected == 0;  // METIS, not a fallback
     if (ok) {
@@ -229,23 +235,6 @@ struct CholmodBackend {
     cholmod_finish(&common);
   }
 
-  // A header over H's own arrays (no copy): CHOLMOD reads its lower triangle.
-  static cholmod_sparse view(const SpMat& a) {
-    cholmod_sparse s{};
-    s.nrow = s.ncol = static_cast<std::size_t>(a.rows());
-    s.nzmax = static_cast<std::size_t>(a.nonZeros());
-    s.p = const_cast<int*>(a.outerIndexPtr());
-    s.i = const_cast<int*>(a.innerIndexPtr());
-    s.x = const_cast<double*>(a.valuePtr());
-    s.stype = -1;
-    s.itype = CHOLMOD_INT;
-    s.xtype = CHOLMOD_REAL;
-    s.dtype = CHOLMOD_DOUBLE;
-    s.sorted = 1;
-    s.packed = 1;
-    return s;
-  }
-
   bool analyze(const SpMat& a) {
     install_cholmod_pool();
     PoolScope scope(pool);
@@ -256,7 +245,7 @@ struct CholmodBackend {
     common.nmethods = 1;
     common.method[0].ordering = CHOLMOD_METIS;
     common.quick_return_if_not_posdef = 1;
-    cholmod_sparse s = view(a);
+    cholmod_sparse s = cholmod_view(a);
     factor = cholmod_analyze(&s, &common);
     if (!factor || common.status != CHOLMOD_OK) {
       // METIS unavailable or failed: CHOLMOD's default choice (AMD) instead.
@@ -281,7 +270,7 @@ struct CholmodBackend {
   bool factorize(const SpMat& a) {
     PoolScope scope(pool);
     set_blas_threads(thread_count());
-    cholmod_sparse s = view(a);
+    cholmod_sparse s = cholmod_view(a);
     cholmod_factorize(&s, factor, &common);
     return common.status == CHOLMOD_OK && factor->minor == factor->n;
   }

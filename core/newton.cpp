@@ -72,6 +72,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
   if (damp_flips) {
     if (static_cast<int>(ws.friction_flipped.size()) != n) ws.friction_flipped.resize(n);
     if (static_cast<int>(ws.damped_diagonal.size()) != n) ws.damped_diagonal.resize(n);
+    ws.damped_nodes.reserve(n);
     std::fill(ws.friction_flipped.begin(), ws.friction_flipped.end(), 0);
   }
   const double h2 = problem.h * problem.h;
@@ -89,7 +90,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     // H + h^2 mu_f lambda_i / |u_i| on the x-diagonal of every marked node still sliding:
     // the curvature of the friction's tightest quadratic bound through u = 0 (IPC's own
     // f1(y)/y term, that the 1D tangent lacks), so p no longer overshoots the stick window.
-    bool damped = false;
+    ws.damped_nodes.clear();
     if (damp_flips) {
       double* values = ws.hessian.values();
       for (int i = 0; i < n; ++i) {
@@ -99,9 +100,10 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
         const int slot = ws.hessian.diagonal_slots[2 * i];
         ws.damped_diagonal[i] = values[slot];
         values[slot] += h2 * problem.friction_weight[i] / u;
-        damped = true;
+        ws.damped_nodes.push_back(i);
       }
     }
+    const bool damped = !ws.damped_nodes.empty();
     result.assembly_ms += ms_since(t);
     if (damped) ++result.damped_solves;
 
@@ -124,11 +126,8 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     // The stopping test is made on a direction of the unmodified Hessian only.
     if (damped && result.residual < settings.tol && result.iterations > 0) {
       double* values = ws.hessian.values();
-      for (int i = 0; i < n; ++i) {
-        if (!ws.friction_flipped[i]) continue;
-        if (std::abs(z[2 * i] - problem.x_start[2 * i]) < problem.friction_eps_u) continue;
+      for (int i : ws.damped_nodes)
         values[ws.hessian.diagonal_slots[2 * i]] = ws.damped_diagonal[i];
-      }
       std::fill(ws.friction_flipped.begin(), ws.friction_flipped.end(), 0);
       if (!ws.solver.solve(ws.hessian.matrix, ws.rhs, ws.direction, request, result.linear)) {
         result.status = StepStatus::LinearSolveFailed;

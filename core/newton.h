@@ -82,6 +82,7 @@ struct NewtonWorkspace {
   double min_node_mass = 0.0;           // for the PCG error bound (linear_solver.h)
   std::vector<char> friction_flipped;   // per node, this step (friction flip damping)
   std::vector<double> damped_diagonal;  // per node: H(x, x) before the damping
+  std::vector<int> damped_nodes;        // the nodes damped in this iteration
 };
 
 NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSettings& settings,
