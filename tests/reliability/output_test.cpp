@@ -233,21 +233,25 @@ TEST(ExistingOutput, NonEmptyDirectoryRefusedUnlessForce) {
 }
 
 // Starts a long run, waits for `min_objs` OBJ files, sends `sig`, and checks the result.
+// Waits (at most 120 s) until `dir` holds at least `count` files ending in `extension`.
+void wait_for_files(const std::string& dir, const std::string& extension, int count) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  auto files = [&] {
+    int n = 0;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) n += e.path().extension() == extension;
+    return n;
+  };
+  while (files() < count && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
 void interrupt_run(int sig) {
   const std::string dir = fresh_dir("interrupt_" + std::to_string(sig));
   test::Process p({INVFREE_EXE, "simulate", "--steps", "100000000", "--obj", dir + "/obj", "--csv",
                    dir + "/run.csv"});
   ASSERT_GT(p.pid(), 0);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  auto count_objs = [&] {
-    int n = 0;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir + "/obj", ec))
-      n += e.path().extension() == ".obj";
-    return n;
-  };
-  while (count_objs() < 40 && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  wait_for_files(dir + "/obj", ".obj", 40);
   ASSERT_EQ(::kill(p.pid(), sig), 0);
   const test::ProcessResult r = p.wait();
   EXPECT_EQ(r.code, 130) << r.err;
@@ -291,16 +295,7 @@ TEST(Interrupt, CtrlCDuringARenderLeavesOnlyCompleteFrames) {
   test::Process p(
       {INVFREE_EXE, "render", "--frames", "100000", "--size", "160x120", "--out", dir + "/frames"});
   ASSERT_GT(p.pid(), 0);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  auto count = [&] {
-    int n = 0;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir + "/frames", ec))
-      n += e.path().extension() == ".png";
-    return n;
-  };
-  while (count() < 10 && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  wait_for_files(dir + "/frames", ".png", 10);
   ASSERT_EQ(::kill(p.pid(), SIGINT), 0);
   const test::ProcessResult r = p.wait();
   EXPECT_EQ(r.code, 130) << r.err;
