@@ -56,11 +56,6 @@ std::string no_window_message(const std::string& reason) {
          "...`";
 }
 
-// An ImGui draw callback: the next draw commands (the opaque frame) without blending.
-void disable_blending(const ImDrawList*, const ImDrawCmd* cmd) {
-  static_cast<const render::GlApi*>(cmd->UserCallbackData)->Disable(GL_BLEND);
-}
-
 // Flips GL's bottom-up RGBA rows into an Image (top row first).
 Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) {
   Image img;
@@ -202,10 +197,7 @@ struct LiveAppImpl {
   }
   bool screenshot_requested = false;
   std::vector<int> injected_keys;  // held by the last injection
-  long drawn_revision = -1;        // what the renderer's texture shows
   long recorded_revision = -1;     // the last state written to the recording
-  render::Camera drawn_camera;
-  int drawn_width = 0, drawn_height = 0;
 
   void handle_keys() {
     const ImGuiIO& io = ImGui::GetIO();
@@ -332,16 +324,19 @@ struct LiveAppImpl {
     say("recorded " + std::to_string(n) + " frame(s) to " + record_dir);
   }
 
-  Image read_window() {
+  // The window's back buffer as drawn so far, RGBA8 bottom row first, opaque.
+  std::vector<std::uint8_t> read_window_bottom_up() {
     const int w = renderer->width(), h = renderer->height();
     std::vector<std::uint8_t> rgba(static_cast<size_t>(w) * h * 4);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     gl.ReadBuffer(GL_BACK);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    Image img = image_from_bottom_up(rgba, w, h);
-    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;  // the window is opaque
-    return img;
+    for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;  // the window is opaque
+    return rgba;
+  }
+  Image read_window() {
+    return image_from_bottom_up(read_window_bottom_up(), renderer->width(), renderer->height());
   }
 
   void frame(const Injection* inject, Image* capture) {
@@ -366,18 +361,6 @@ struct LiveAppImpl {
       for (char c : inject->text) io.AddInputCharacter(static_cast<unsigned char>(c));
     }
     ImGui::NewFrame();
-    // The picture goes under everything ImGui draws. Drawing the renderer's texture as an
-    // ImGui image costs far less than glBlitFramebuffer under llvmpipe (0.5 vs 7 ms at 720p);
-    // the texture is filled below, before ImGui's draw data is rendered.
-    // The frame is opaque and covers the window: drawn without blending (a software
-    // rasterizer then only writes, it does not read back every pixel), no clear needed.
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImDrawList* background = ImGui::GetBackgroundDrawList();
-    background->AddCallback(disable_blending, &gl);
-    background->AddImage(
-        reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(renderer->texture())),
-        ImVec2(0, 0), display, ImVec2(0, 1), ImVec2(1, 0));
-    background->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
     handle_keys();
     handle_mouse();
 
@@ -403,42 +386,35 @@ struct LiveAppImpl {
     draw_grab_markers();
     ImGui::Render();
 
-    // The picture: the shared renderer's frame with the live camera.
+    // The picture: the shared renderer's frame with the live camera, drawn straight into
+    // the window's back buffer under everything ImGui draws.
     const render::Camera cam{view.pixels_per_metre, view.to_screen(Vec2::Zero())};
     render::DrawOptions draw_options;
     draw_options.camera = cam;
+    draw_options.framebuffer = 0;
     // Edges closer than a few pixels only grey the picture (and cost the most triangles).
     const SceneDef& shown = controller->settings();
     draw_options.edges = shown.side / shown.n_seg * view.pixels_per_metre >= kMinEdgeSpacingPixels;
-    // Redrawn only when something it shows changed (paused and untouched: no GL work).
+    const render::FrameState state = render::capture_frame_state(controller->simulation());
     const long revision = controller->revision();
-    if (revision != drawn_revision || cam.pixels_per_metre != drawn_camera.pixels_per_metre ||
-        cam.origin != drawn_camera.origin || renderer->width() != drawn_width ||
-        renderer->height() != drawn_height) {
-      renderer->draw(render::capture_frame_state(controller->simulation()), draw_options);
-      drawn_revision = revision;
-      drawn_camera = cam;
-      drawn_width = renderer->width();
-      drawn_height = renderer->height();
-    }
+    // The next state is computed while this frame is drawn, rasterized and presented (the
+    // GL work below reads only the copied state): on two cores the step and the renderer
+    // (llvmpipe's rasterizer threads too) then overlap instead of queueing.
+    std::future<void> stepping;
+    if (controller->playing())
+      stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
+    renderer->draw(state, draw_options);
     const int w = renderer->width(), h = renderer->height();
     // A recording holds each state once (from the initial one), not idle repeats.
     if (recorder && revision != recorded_revision) {
       recorded_revision = revision;
-      std::vector<std::uint8_t> rgba;
-      renderer->read_pixels(&rgba);
-      if (!recorder->submit(record_frame_path(record_dir, record_frame), w, h, std::move(rgba))) {
+      if (!recorder->submit(record_frame_path(record_dir, record_frame), w, h,
+                            read_window_bottom_up())) {
         stop_recording();
       } else {
         ++record_frame;
       }
     }
-    // The next state is computed while this frame is rasterized and presented (the GL
-    // calls below touch no simulation data; the frame's state was copied for drawing):
-    // on two cores the step and llvmpipe's rasterizer then overlap instead of queueing.
-    std::future<void> stepping;
-    if (controller->playing())
-      stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.Viewport(0, 0, w, h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -167,7 +167,8 @@ void mesh_edges(const std::vector<std::array<int, 3>>& triangles,
 
 struct GlResources {
   GlApi gl;
-  GLuint shape_program = 0, text_program = 0;
+  GLuint shape_program = 0, fill_program = 0, text_program = 0;
+  GLint fill_frame_size = -1;
   GLint shape_frame_size = -1, shape_hatch = -1, shape_hatch_color = -1;
   GLint text_frame_size = -1, text_atlas_size = -1, text_atlas = -1;
   GLuint shape_vao = 0, shape_vbo = 0, text_vao = 0, text_vbo = 0;
@@ -181,7 +182,10 @@ struct GlResources {
   Shapes shapes, hatched;
   std::vector<TextVertex> text;
   std::vector<GlyphQuad> glyphs;
+  // The mesh's edges, and the triangles they were found from: the sort is redone only
+  // when the mesh changes (every frame of a 64x64 mesh it would cost ~0.4 ms).
   std::vector<std::pair<int, int>> interior_edges, boundary_edges;
+  std::vector<std::array<int, 3>> edges_of;
 
   void release_framebuffers() {
     if (draw_fbo) gl.DeleteFramebuffers(1, &draw_fbo);
@@ -206,13 +210,15 @@ struct GlResources {
 
 // The side panel: scene, model, Lame parameters, time, step, det F extremes, and the
 // colour bar with its ticks, the min/max markers and the det F <= 0 swatch.
-static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState& state,
-                       double det_lo, double det_hi, int inverted) {
+// Returns the end of its opaque backdrop in res.shapes (what can be drawn without blending).
+static size_t draw_panel(GlResources& res, const FrameLayout& L, const FrameState& state,
+                         double det_lo, double det_hi, int inverted) {
   const SceneDef& scene = state.scene;
   const double s = L.scale;
   Shapes& panel = res.shapes;
   add_rect(panel, L.panel.x, 0, L.panel.x + L.panel.w, L.height, kPanelBackground);
   add_rect(panel, L.panel.x, 0, L.panel.x + std::max(1.0, std::round(s)), L.height, kSeparator);
+  const size_t backdrop_end = panel.size();
   const double pad = std::round(26.0 * s);
   const double x0 = L.panel.x + pad;
   const double body = res.font_sizes[kBody], small = res.font_sizes[kSmall];
@@ -281,6 +287,7 @@ static void draw_panel(GlResources& res, const FrameLayout& L, const FrameState&
     const double mx = bar_x0 - std::round(2.0 * s) - res.atlas.text_width("▶", kSmall);
     res.add_text("▶", kSmall, mx, my - res.atlas.ink_middle(kSmall, U'▶'), kInk);
   }
+  return backdrop_end;
 }
 
 Renderer::Renderer() : gl_(std::make_unique<GlResources>()) {}
@@ -291,6 +298,7 @@ Renderer::~Renderer() {
   if (gl.DeleteProgram == nullptr) return;
   gl_->release_framebuffers();
   gl.DeleteProgram(gl_->shape_program);
+  gl.DeleteProgram(gl_->fill_program);
   gl.DeleteProgram(gl_->text_program);
   const GLuint buffers[] = {gl_->shape_vbo, gl_->text_vbo};
   gl.DeleteBuffers(2, buffers);
@@ -313,9 +321,12 @@ std::unique_ptr<Renderer> Renderer::create(GlGetProcAddress get_proc_address, in
   const ShaderSources& src = shader_sources();
   res.shape_program = build_program(gl, "shape", src.shape_vertex, src.shape_fragment, error);
   if (!res.shape_program) return nullptr;
+  res.fill_program = build_program(gl, "fill", src.shape_vertex, src.fill_fragment, error);
+  if (!res.fill_program) return nullptr;
   res.text_program = build_program(gl, "text", src.text_vertex, src.text_fragment, error);
   if (!res.text_program) return nullptr;
   res.shape_frame_size = gl.GetUniformLocation(res.shape_program, "frame_size");
+  res.fill_frame_size = gl.GetUniformLocation(res.fill_program, "frame_size");
   res.shape_hatch = gl.GetUniformLocation(res.shape_program, "hatch");
   res.shape_hatch_color = gl.GetUniformLocation(res.shape_program, "hatch_color");
   res.text_frame_size = gl.GetUniformLocation(res.text_program, "frame_size");
@@ -505,7 +516,11 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
     det_hi = std::max(det_hi, d);
     if (!(d > 0.0)) ++inverted;
   }
-  mesh_edges(state.triangles, &res.interior_edges, &res.boundary_edges);
+  const size_t world_fills = world.size();  // opaque so far; the strokes below blend
+  if (state.triangles != res.edges_of) {
+    mesh_edges(state.triangles, &res.interior_edges, &res.boundary_edges);
+    res.edges_of = state.triangles;
+  }
   if (options.edges) {
     const double w = std::max(1.0, 1.1 * s);
     for (const auto& [a, b] : res.interior_edges) add_segment(world, p[a], p[b], w, kMeshEdge);
@@ -525,7 +540,8 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   const size_t world_vertices = world.size();
 
   // --- The panel: words, numbers and the colour bar (same vertex list, not clipped).
-  if (options.panel) draw_panel(res, L, state, det_lo, det_hi, inverted);
+  const size_t panel_backdrop =
+      options.panel ? draw_panel(res, L, state, det_lo, det_hi, inverted) : world_vertices;
 
   // --- GL: draw everything into the (multisampled) framebuffer, then resolve.
   GLint previous_draw = 0, previous_read = 0, viewport[4] = {};
@@ -534,37 +550,59 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   gl.GetIntegerv(GL_VIEWPORT, viewport);
   const bool blend_was = gl.IsEnabled(GL_BLEND), scissor_was = gl.IsEnabled(GL_SCISSOR_TEST);
 
-  const GLuint target = res.draw_fbo ? res.draw_fbo : res.resolve_fbo;
+  const GLuint output = options.framebuffer ? *options.framebuffer : res.resolve_fbo;
+  const GLuint target = res.draw_fbo ? res.draw_fbo : output;
   gl.BindFramebuffer(GL_FRAMEBUFFER, target);
   gl.Viewport(0, 0, L.width, L.height);
   gl.Disable(GL_SCISSOR_TEST);
   gl.ClearColor(kPlotBackground.r, kPlotBackground.g, kPlotBackground.b, kPlotBackground.a);
   gl.Clear(GL_COLOR_BUFFER_BIT);
-  gl.Enable(GL_BLEND);
+  // Opaque fills first and without blending (alpha 1: blending would change no pixel, but a
+  // software rasterizer would read each one back). The antialiased strokes and the text
+  // blend over them.
+  gl.Disable(GL_BLEND);
   gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
-  gl.UseProgram(res.shape_program);
-  gl.Uniform2f(res.shape_frame_size, float(L.width), float(L.height));
   gl.BindVertexArray(res.shape_vao);
   gl.BindBuffer(GL_ARRAY_BUFFER, res.shape_vbo);
+  const auto draw_range = [&](size_t begin, size_t end) {
+    gl.DrawArrays(GL_TRIANGLES, static_cast<GLint>(begin), static_cast<GLsizei>(end - begin));
+  };
   // Clip the world to the plot area (GL's scissor box has its origin bottom-left).
-  gl.Enable(GL_SCISSOR_TEST);
-  gl.Scissor(
-      static_cast<GLint>(std::lround(L.plot.x)), static_cast<GLint>(std::lround(L.height - py1)),
-      static_cast<GLsizei>(std::lround(L.plot.w)), static_cast<GLsizei>(std::lround(L.plot.h)));
+  const auto clip_to_plot = [&](bool on) {
+    if (!on) return gl.Disable(GL_SCISSOR_TEST);
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(static_cast<GLint>(std::lround(L.plot.x)),
+               static_cast<GLint>(std::lround(L.height - py1)),
+               static_cast<GLsizei>(std::lround(L.plot.w)),
+               static_cast<GLsizei>(std::lround(L.plot.h)));
+  };
+  clip_to_plot(true);
+  // The hatched bands of the planes (opaque).
+  gl.UseProgram(res.shape_program);
+  gl.Uniform2f(res.shape_frame_size, float(L.width), float(L.height));
   const float spacing = static_cast<float>(std::max(6.0, std::round(14.0 * s)));
   gl.Uniform4f(res.shape_hatch, spacing, static_cast<float>(std::max(1.0, 1.3 * s)), 1.0f, 0.0f);
   gl.Uniform4f(res.shape_hatch_color, kPlaneHatch.r, kPlaneHatch.g, kPlaneHatch.b, 1.0f);
   gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(res.hatched.size() * sizeof(ShapeVertex)),
                 res.hatched.data(), GL_STREAM_DRAW);
-  gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(res.hatched.size()));
-  gl.Uniform4f(res.shape_hatch, 1.0f, 0.0f, 0.0f, 0.0f);
+  draw_range(0, res.hatched.size());
+  // The opaque fills: the world's, then the panel's backdrop.
   gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(res.shapes.size() * sizeof(ShapeVertex)),
                 res.shapes.data(), GL_STREAM_DRAW);
-  gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(world_vertices));
-  gl.Disable(GL_SCISSOR_TEST);
-  gl.DrawArrays(GL_TRIANGLES, static_cast<GLint>(world_vertices),
-                static_cast<GLsizei>(res.shapes.size() - world_vertices));
+  gl.UseProgram(res.fill_program);
+  gl.Uniform2f(res.fill_frame_size, float(L.width), float(L.height));
+  draw_range(0, world_fills);
+  clip_to_plot(false);
+  draw_range(world_vertices, panel_backdrop);
+  // The antialiased strokes over the world's fills, and the panel's content.
+  gl.UseProgram(res.shape_program);
+  gl.Uniform4f(res.shape_hatch, 1.0f, 0.0f, 0.0f, 0.0f);
+  gl.Enable(GL_BLEND);
+  clip_to_plot(true);
+  draw_range(world_fills, world_vertices);
+  clip_to_plot(false);
+  draw_range(panel_backdrop, res.shapes.size());
 
   gl.UseProgram(res.text_program);
   gl.Uniform2f(res.text_frame_size, float(L.width), float(L.height));
@@ -580,7 +618,7 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
 
   if (res.draw_fbo) {
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, res.draw_fbo);
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, res.resolve_fbo);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, output);
     gl.BlitFramebuffer(0, 0, L.width, L.height, 0, 0, L.width, L.height, GL_COLOR_BUFFER_BIT,
                        GL_NEAREST);
   }
@@ -605,24 +643,6 @@ void Renderer::read_pixels(std::vector<std::uint8_t>* rgba) const {
   gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
   gl.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba->data());
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
-}
-
-unsigned Renderer::texture() const {
-  return gl_->resolve_texture;
-}
-
-void Renderer::blit_to(unsigned target, int x, int y, int w, int h) const {
-  const GlApi& gl = gl_->gl;
-  GLint previous_draw = 0, previous_read = 0;
-  gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_draw);
-  gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous_read);
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, gl_->resolve_fbo);
-  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
-  const bool same = w == width_ && h == height_;
-  gl.BlitFramebuffer(0, 0, width_, height_, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
-                     same ? GL_NEAREST : GL_LINEAR);
-  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_draw));
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
 }
 

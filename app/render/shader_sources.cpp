@@ -15,6 +15,7 @@
 
 INVFREE_EMBED(invfree_shape_vertex_glsl, "shape_vertex.glsl")
 INVFREE_EMBED(invfree_shape_fragment_glsl, "shape_fragment.glsl")
+INVFREE_EMBED(invfree_fill_fragment_glsl, "fill_fragment.glsl")
 INVFREE_EMBED(invfree_text_vertex_glsl, "text_vertex.glsl")
 INVFREE_EMBED(invfree_text_fragment_glsl, "text_fragment.glsl")
 
@@ -22,7 +23,8 @@ namespace invfree::render {
 
 const ShaderSources& shader_sources() {
   static const ShaderSources sources{invfree_shape_vertex_glsl, invfree_shape_fragment_glsl,
-                                     invfree_text_vertex_glsl, invfree_text_fragment_glsl};
+                                     invfree_fill_fragment_glsl, invfree_text_vertex_glsl,
+                                     invfree_text_fragment_glsl};
   return sources;
 }
 

@@ -8,6 +8,7 @@ namespace invfree::render {
 struct ShaderSources {
   const char* shape_vertex;
   const char* shape_fragment;
+  const char* fill_fragment;  // with shape_vertex
   const char* text_vertex;
   const char* text_fragment;
 };
