@@ -572,10 +572,9 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   const auto clip_to_plot = [&](bool on) {
     if (!on) return gl.Disable(GL_SCISSOR_TEST);
     gl.Enable(GL_SCISSOR_TEST);
-    gl.Scissor(static_cast<GLint>(std::lround(L.plot.x)),
-               static_cast<GLint>(std::lround(L.height - py1)),
-               static_cast<GLsizei>(std::lround(L.plot.w)),
-               static_cast<GLsizei>(std::lround(L.plot.h)));
+    gl.Scissor(
+        static_cast<GLint>(std::lround(L.plot.x)), static_cast<GLint>(std::lround(L.height - py1)),
+        static_cast<GLsizei>(std::lround(L.plot.w)), static_cast<GLsizei>(std::lround(L.plot.h)));
   };
   clip_to_plot(true);
   // The hatched bands of the planes (opaque).
