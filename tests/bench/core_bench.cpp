@@ -8,6 +8,7 @@
 // The whole-run scaling curve (every phase of the scene, medians) is `invfree bench`.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/OrderingMethods>
 #include <random>
 
 #include "core/incremental_potential.h"
@@ -15,6 +16,7 @@
 #include "core/parallel.h"
 #include "core/scene.h"
 #include "core/simulation.h"
+#include "core/sparse_ldlt.h"
 #include "core/triangle_elasticity.h"
 
 namespace invfree {
@@ -125,6 +127,30 @@ void BM_Energy(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
 }
 BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
+
+// One forward + backward solve with the LDL^T factor of a compressed mesh's projected
+// Hessian (AMD ordering, the 2-bin split): the kernel PCG repeats once per iteration.
+// Items: entries of L.
+void BM_LdltSolve(benchmark::State& state) {
+  Simulation sim = compressed(static_cast<int>(state.range(0)));
+  VecX g;
+  ip_gradient_hessian(sim.problem, state_of(sim), g, sim.workspace.hessian);
+  const Eigen::SparseMatrix<double>& h = sim.workspace.hessian.matrix;
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;
+  Eigen::AMDOrdering<int>()(h, perm);
+  SparseLdlt ldlt;
+  ldlt.analyze(h, std::vector<int>(perm.indices().data(), perm.indices().data() + h.rows()), 2);
+  if (!ldlt.factorize(h)) {
+    state.SkipWithError("factorisation failed");
+    return;
+  }
+  const VecX b = VecX::Ones(h.rows());
+  VecX x(h.rows());
+  for (auto _ : state) ldlt.solve(b, x);
+  state.SetItemsProcessed(state.iterations() * ldlt.factor_nonzeros());
+  state.counters["L_nonzeros"] = static_cast<double>(ldlt.factor_nonzeros());
+}
+BENCHMARK(BM_LdltSolve)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
 
 // Steps of `compress` at n_seg = range(0) in the compression phase (steps 120-260): the
 // hardest part of the run. The whole-run medians come from `invfree bench`.
