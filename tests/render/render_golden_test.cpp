@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app/render/gl_api.h"
 #include "app/render/offscreen_context.h"
 #include "app/render/renderer.h"
 #include "core/scene.h"
@@ -25,14 +26,14 @@ namespace {
 constexpr int kWidth = 960, kHeight = 540;
 
 // One offscreen context and renderer for the whole test program.
+std::unique_ptr<render::OffscreenContext> g_context;
 render::Renderer& renderer() {
-  static std::unique_ptr<render::OffscreenContext> context;
   static std::unique_ptr<render::Renderer> r;
   if (!r) {
     std::string error;
-    context = render::OffscreenContext::create(&error);
-    if (!context) ADD_FAILURE() << error;
-    r = render::Renderer::create(context->get_proc_address(), kWidth, kHeight, &error);
+    g_context = render::OffscreenContext::create(&error);
+    if (!g_context) ADD_FAILURE() << error;
+    r = render::Renderer::create(g_context->get_proc_address(), kWidth, kHeight, &error);
     if (!r) ADD_FAILURE() << error;
   }
   return *r;
@@ -144,6 +145,49 @@ TEST(RenderGolden, SameStateSamePixels) {
   render_state(other);
   const test::RgbImage again = render_state(a);
   EXPECT_EQ(first.rgb, again.rgb);
+}
+
+TEST(RenderGolden, DrawsTheSameFrameIntoAGivenFramebuffer) {
+  // DrawOptions::framebuffer, the live window's path: a framebuffer the caller owns
+  // receives the very pixels the renderer's own would, and the renderer's own frame
+  // (read_pixels) stays the one drawn before.
+  render::Renderer& r = renderer();
+  render::GlApi gl;
+  ASSERT_EQ(render::load_gl_api(g_context->get_proc_address(), &gl), "");
+  GLuint texture = 0, framebuffer = 0;
+  gl.GenTextures(1, &texture);
+  gl.BindTexture(GL_TEXTURE_2D, texture);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, kWidth, kHeight, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                nullptr);
+  gl.BindTexture(GL_TEXTURE_2D, 0);
+  gl.GenFramebuffers(1, &framebuffer);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+  ASSERT_EQ(gl.CheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+
+  Simulation compressed = make_simulation(scene("compress"));
+  run_to(compressed, 150);
+  const Simulation dropped = make_simulation(scene("drop"));
+  const test::RgbImage own_before = render_state(compressed);
+  render::DrawOptions into_given;
+  into_given.framebuffer = framebuffer;
+  r.draw(render::capture_frame_state(dropped), into_given);
+  std::vector<std::uint8_t> given(static_cast<size_t>(kWidth) * kHeight * 4);
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl.ReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, given.data());
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  std::vector<std::uint8_t> own_after;
+  r.read_pixels(&own_after);
+  EXPECT_EQ(test::from_gl_pixels(own_after, kWidth, kHeight).rgb, own_before.rgb);
+
+  const test::RgbImage own_dropped = render_state(dropped);
+  EXPECT_NE(own_dropped.rgb, own_before.rgb);  // two different pictures
+  EXPECT_EQ(test::from_gl_pixels(given, kWidth, kHeight).rgb, own_dropped.rgb);
+  gl.DeleteFramebuffers(1, &framebuffer);
+  gl.DeleteTextures(1, &texture);
 }
 
 }  // namespace
