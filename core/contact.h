@@ -46,6 +46,17 @@ inline double barrier_second_derivative(double d, const BarrierParams& b) {
   return b.area * 0.5 * b.kappa / b.dhat * (1.0 / s + 1.0 / (s * s));
 }
 
+// The body's push on a ceiling at height ceiling_y (N, >= 0): the sum of the barrier's
+// forces -b'(d) over the nodes closer than dhat below it. x: 2 per node (x, y).
+inline double ceiling_push(const double* x, int nodes, double ceiling_y, const BarrierParams& b) {
+  double push = 0.0;
+  for (int i = 0; i < nodes; ++i) {
+    const double d = ceiling_y - x[2 * i + 1];
+    if (d > 0.0 && d < b.dhat) push -= barrier_derivative(d, b);
+  }
+  return push;
+}
+
 inline double friction_value(double u, double weight, double eps_u) {
   const double y = std::abs(u);
   if (y >= eps_u) return weight * y;

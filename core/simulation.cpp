@@ -153,11 +153,7 @@ StepReport implicit_euler_step(Simulation& sim, double& ceiling_new) {
     // let a compressed body lift the ceiling by centimetres in the first iterations of a
     // step whose ceiling could not jump to its target, and Newton then spent its budget
     // doubling k back (n_seg 256: k 15 -> 969 in one step, then the cap of 100).
-    double reaction = 0.0;
-    for (int i = 0; i < n; ++i) {
-      const double d = z[2 * n] - z[2 * i + 1];
-      if (d < sim.problem.barrier.dhat) reaction -= barrier_derivative(d, sim.problem.barrier);
-    }
+    const double reaction = ceiling_push(z.data(), n, z[2 * n], sim.problem.barrier);
     const double h = sim.scene.h;
     sim.problem.ceiling_stiffness =
         std::max(sim.problem.ceiling_stiffness, 2.0 * h * h * reaction / (sim.scene.tol * h));

@@ -54,13 +54,8 @@ bool energy_exceeds_budget(double energy, double floor, double initial, double c
 double ceiling_push(const Simulation& sim) {
   const SceneDef& s = sim.scene;
   if (!s.has_ceiling) return 0.0;
-  const BarrierParams b{s.dhat, s.kappa, s.contact_area()};
-  double f = 0.0;
-  for (int i = 0; i < sim.mesh.node_count(); ++i) {
-    const double d = sim.ceiling_y - sim.x[2 * i + 1];
-    if (d > 0.0 && d < s.dhat) f -= barrier_derivative(d, b);
-  }
-  return f;
+  return invfree::ceiling_push(sim.x.data(), sim.mesh.node_count(), sim.ceiling_y,
+                               BarrierParams{s.dhat, s.kappa, s.contact_area()});
 }
 
 double gravity_floor(const Simulation& sim) {
