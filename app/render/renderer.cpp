@@ -397,8 +397,7 @@ std::string Renderer::resize(int width, int height) {
   gl.GenTextures(1, &res.resolve_texture);
   gl.BindTexture(GL_TEXTURE_2D, res.resolve_texture);
   gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  // Shown 1:1 (the live window draws it under its panel): nearest sampling gives the same
-  // picture as linear and costs llvmpipe 1.7 ms less per 720p frame.
+  // Read back (read_pixels), never sampled; a filter without mipmaps keeps it complete.
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
