@@ -395,7 +395,8 @@ struct LiveAppImpl {
     // Edges closer than a few pixels only grey the picture (and cost the most triangles).
     const SceneDef& shown = controller->settings();
     draw_options.edges = shown.side / shown.n_seg * view.pixels_per_metre >= kMinEdgeSpacingPixels;
-    const render::FrameState state = render::capture_frame_state(controller->simulation());
+    const render::FrameState state =
+        render::capture_frame_state(controller->simulation(), &controller->det_f());
     const long revision = controller->revision();
     // The next state is computed while this frame is drawn, rasterized and presented (the
     // GL work below reads only the copied state): on two cores the step and the renderer

@@ -450,12 +450,12 @@ std::string Renderer::resize(int width, int height) {
   return error;
 }
 
-FrameState capture_frame_state(const Simulation& sim) {
+FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f) {
   FrameState f;
   f.scene = sim.scene;
   f.x = sim.x;
   f.triangles = sim.mesh.triangles;
-  f.det_f = triangle_det_f(sim);
+  f.det_f = det_f ? *det_f : triangle_det_f(sim);
   f.ceiling_y = sim.ceiling_y;
   f.time = sim.time;
   f.step = sim.step_count;

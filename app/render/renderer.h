@@ -57,7 +57,8 @@ struct FrameState {
   long step = 0;
 };
 
-FrameState capture_frame_state(const Simulation& sim);
+// det_f: the state's det F per triangle when the caller has it already (else computed).
+FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f = nullptr);
 
 struct DrawOptions {
   bool edges = true;  // triangle edges (the outline is always drawn)
