@@ -65,7 +65,8 @@ TEST(RenderCli, WritesFramesAndFrameZeroIsTheInitialState) {
 
 TEST(RenderCli, RefusesANonEmptyDirectoryUnlessForced) {
   const std::string dir = fresh_dir("force");
-  ASSERT_EQ(run("render --frames 1 --size 320x180 --out " + dir).code, 0);
+  const CommandResult first = run("render --frames 1 --size 320x180 --out " + dir);
+  ASSERT_EQ(first.code, 0) << first.err;
   const CommandResult again = run("render --frames 2 --size 320x180 --out " + dir);
   EXPECT_EQ(again.code, 2);
   EXPECT_EQ(std::count(again.err.begin(), again.err.end(), '\n'), 1) << again.err;
