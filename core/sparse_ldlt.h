@@ -16,6 +16,10 @@
 // A 2D mesh ordered by nested dissection (or AMD) has a tree whose top separator is a
 // few dozen nodes: on the 2-core machines the solves PCG repeats run ~1.8x faster.
 //
+// The solves, which PCG repeats many times per factorisation, read one list of row
+// indices per fundamental supernode instead of one per column (the values and the order
+// of every operation are unchanged, so are the bits): n_seg 128, 1.9 -> 1.1 ms a solve.
+//
 // Inputs: the full symmetric pattern (CSC, both triangles, sorted) and a fill-reducing
 // ordering; then values on that same pattern. No allocation after `analyze`.
 #pragma once
@@ -45,6 +49,8 @@ class SparseLdlt {
   // Work estimates (flops) from the symbolic factor, for cost models.
   double factor_flops() const { return factor_flops_; }
   double solve_flops() const { return solve_flops_; }
+  // Row indices the solves read (one list per supernode, see share_row_indices).
+  long solve_row_indices() const { return static_cast<long>(solve_rows_.size()); }
   // Fraction of the solve's work left to the serial top of the tree (0 with one bin).
   double serial_fraction() const { return serial_fraction_; }
   const std::vector<int>& old_to_new() const { return old_to_new_; }
@@ -56,6 +62,7 @@ class SparseLdlt {
   };
   void factor_rows(int begin, int end, Scratch& s, bool positive_definite, bool& ok);
   void plan(int bins);
+  void share_row_indices();
 
   int n_ = 0;
   std::vector<int> old_to_new_;
@@ -73,6 +80,10 @@ class SparseLdlt {
   std::vector<std::pair<int, int>> ranges_;
   std::vector<int> top_, split_;
   std::vector<Scratch> scratch_;
+  // The solves' row indices: column j's are solve_rows_[solve_row_begin_[j] ..], one list
+  // per supernode (share_row_indices).
+  std::vector<int> solve_rows_, solve_row_begin_;
+  std::vector<int> snode_last_;  // per column: the last column of its supernode
   VecX work_;
   double factor_flops_ = 0.0, solve_flops_ = 0.0, serial_fraction_ = 0.0;
 };

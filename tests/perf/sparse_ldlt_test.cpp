@@ -118,6 +118,17 @@ TEST(SparseLdlt, TwoBinsRunConcurrentlyOnMostOfTheWork) {
   EXPECT_LT(ldlt.serial_fraction(), 0.2);
 }
 
+TEST(SparseLdlt, SolvesReadOneRowListPerSupernode) {
+  // Two unknowns per node: nearly every column shares its rows with the next one, so the
+  // solves read well under half as many indices as L has entries (the accuracy of what
+  // they compute is checked above).
+  const SpMat a = mesh_matrix(40, 1.0, 8u);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  EXPECT_GT(ldlt.solve_row_indices(), 0);
+  EXPECT_LT(ldlt.solve_row_indices(), ldlt.factor_nonzeros() / 2);
+}
+
 TEST(SparseLdlt, BitIdenticalForAnyThreadCount) {
   const SpMat a = mesh_matrix(40, 1.0, 6u);
   const VecX b = VecX::LinSpaced(a.rows(), -3.0, 1.0);
