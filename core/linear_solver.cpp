@@ -156,6 +156,13 @@ struct LdltBackend {
   // less fill on larger meshes (256k against 279k entries of L at n_seg 64, 6.4M against
   // 8.1M at n_seg 256) and a balanced tree for the threads.
   void analyze(const SpMat& a, bool nested_dissection) {
+    ldlt.analyze(a, ordering(a, nested_dissection),
+                 a.rows() >= kParallelLdltMinUnknowns ? kLdltBins : 1);
+    factor_flops = ldlt.factor_flops();
+    solve_flops = ldlt.solve_flops();
+  }
+
+  static std::vector<int> ordering(const SpMat& a, bool nested_dissection) {
     const int n = static_cast<int>(a.rows());
     std::vector<int> new_to_old(n);
     if (!(nested_dissection && metis_order(a, new_to_old))) {
@@ -164,9 +171,7 @@ struct LdltBackend {
       amd(a, perm);
       for (int k = 0; k < n; ++k) new_to_old[k] = perm.indices()[k];
     }
-    ldlt.analyze(a, new_to_old, n >= kParallelLdltMinUnknowns ? kLdltBins : 1);
-    factor_flops = ldlt.factor_flops();
-    solve_flops = ldlt.solve_flops();
+    return new_to_old;
   }
 
   static bool metis_order(const SpMat& a, std::vector<int>& new_to_old) {
@@ -315,6 +320,12 @@ double multiply(const SpMat& h, const VecX& v, VecX& y) {
 }
 
 }  // namespace
+
+void analyze_like_the_solver(const SpMat& pattern, SparseLdlt& ldlt) {
+  ldlt.analyze(pattern,
+               LdltBackend::ordering(pattern, pattern.rows() >= kNestedDissectionMinUnknowns),
+               pattern.rows() >= kParallelLdltMinUnknowns ? kLdltBins : 1);
+}
 
 struct LinearSolver::Impl {
   bool pcg = false;

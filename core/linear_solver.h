@@ -44,6 +44,8 @@
 
 namespace invfree {
 
+class SparseLdlt;
+
 struct LinearSolveStats {
   int factorizations = 0;
   int solves = 0;          // Newton systems solved
@@ -101,5 +103,9 @@ class LinearSolver {
 constexpr int kNestedDissectionMinUnknowns = 5000;
 constexpr int kParallelLdltMinUnknowns = 1000;
 constexpr int kLdltBins = 2;
+
+// The LDL^T backend's analysis of `pattern` exactly as the solver makes it (ordering and
+// bins above), for benchmarks and tests that time a SparseLdlt of their own.
+void analyze_like_the_solver(const Eigen::SparseMatrix<double>& pattern, SparseLdlt& ldlt);
 
 }  // namespace invfree
