@@ -152,16 +152,15 @@ struct LdltBackend {
   SparseLdlt ldlt;
   double factor_flops = 0.0, solve_flops = 0.0;
 
-  // `nested_dissection`: METIS's ordering (through CHOLMOD's analysis) instead of AMD:
-  // less fill on larger meshes (256k against 279k entries of L at n_seg 64, 6.4M against
-  // 8.1M at n_seg 256) and a balanced tree for the threads.
-  void analyze(const SpMat& a, bool nested_dissection) {
-    ldlt.analyze(a, ordering(a, nested_dissection),
-                 a.rows() >= kParallelLdltMinUnknowns ? kLdltBins : 1);
+  void analyze(const SpMat& a) {
+    analyze_like_the_solver(a, ldlt);
     factor_flops = ldlt.factor_flops();
     solve_flops = ldlt.solve_flops();
   }
 
+  // `nested_dissection`: METIS's ordering (through CHOLMOD's analysis) instead of AMD:
+  // less fill on larger meshes (256k against 279k entries of L at n_seg 64, 6.4M against
+  // 8.1M at n_seg 256) and a balanced tree for the threads.
   static std::vector<int> ordering(const SpMat& a, bool nested_dissection) {
     const int n = static_cast<int>(a.rows());
     std::vector<int> new_to_old(n);
@@ -505,7 +504,7 @@ void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool posit
       break;
   }
   if (s.cholmod && !s.chol.analyze(pattern)) s.cholmod = false;
-  if (!s.cholmod) s.ldlt.analyze(pattern, n >= kNestedDissectionMinUnknowns);
+  if (!s.cholmod) s.ldlt.analyze(pattern);
   const double factor_flops = s.cholmod ? s.chol.factor_flops : s.ldlt.factor_flops;
   const double solve_flops = s.cholmod ? s.chol.solve_flops : s.ldlt.solve_flops;
   s.factor_cost = factor_flops;
