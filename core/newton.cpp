@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/friction_crossing.h"
 #include "core/line_search_filter.h"
 
 namespace invfree {
@@ -67,15 +68,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
   SolveRequest request;
   request.forcing = settings.forcing;
 
-  // Friction nodes whose slip changed sign in an accepted step (see newton.h).
-  const bool damp_flips = settings.friction_flip_damping && problem.friction_on;
-  if (damp_flips) {
-    if (static_cast<int>(ws.friction_flipped.size()) != n) ws.friction_flipped.resize(n);
-    if (static_cast<int>(ws.damped_diagonal.size()) != n) ws.damped_diagonal.resize(n);
-    ws.damped_nodes.reserve(n);
-    std::fill(ws.friction_flipped.begin(), ws.friction_flipped.end(), 0);
-  }
-  const double h2 = problem.h * problem.h;
+  const bool stop_crossings = settings.friction_crossing_stop && problem.friction_on;
 
   double energy = timed_energy(z);
   for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations) {
@@ -87,25 +80,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     auto t = Clock::now();
     ip_gradient_hessian(problem, z, ws.gradient, ws.hessian);
     ws.rhs = -ws.gradient;
-    // H + h^2 mu_f lambda_i / |u_i| on the x-diagonal of every marked node still sliding:
-    // the curvature of the friction's tightest quadratic bound through u = 0 (IPC's own
-    // f1(y)/y term, that the 1D tangent lacks), so p no longer overshoots the stick window.
-    ws.damped_nodes.clear();
-    if (damp_flips) {
-      double* values = ws.hessian.values();
-      for (int i = 0; i < n; ++i) {
-        if (!ws.friction_flipped[i]) continue;
-        const double u = std::abs(z[2 * i] - problem.x_start[2 * i]);
-        if (u < problem.friction_eps_u) continue;
-        const int slot = ws.hessian.diagonal_slots[2 * i];
-        ws.damped_diagonal[i] = values[slot];
-        values[slot] += h2 * problem.friction_weight[i] / u;
-        ws.damped_nodes.push_back(i);
-      }
-    }
-    const bool damped = !ws.damped_nodes.empty();
     result.assembly_ms += ms_since(t);
-    if (damped) ++result.damped_solves;
 
     request.threshold = settings.tol * problem.h;
     request.lambda_min = 0.0;
@@ -123,18 +98,6 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
       break;
     }
     result.residual = ws.direction.lpNorm<Eigen::Infinity>() / problem.h;
-    // The stopping test is made on a direction of the unmodified Hessian only.
-    if (damped && result.residual < settings.tol && result.iterations > 0) {
-      double* values = ws.hessian.values();
-      for (int i : ws.damped_nodes)
-        values[ws.hessian.diagonal_slots[2 * i]] = ws.damped_diagonal[i];
-      std::fill(ws.friction_flipped.begin(), ws.friction_flipped.end(), 0);
-      if (!ws.solver.solve(ws.hessian.matrix, ws.rhs, ws.direction, request, result.linear)) {
-        result.status = StepStatus::LinearSolveFailed;
-        break;
-      }
-      result.residual = ws.direction.lpNorm<Eigen::Infinity>() / problem.h;
-    }
     // Never accept the starting point without one step: where the whole step's motion is
     // below tol * h (a square at rest, h g < tol: h < 1e-3 s at tol = 1e-2 m/s) it would
     // be accepted unchanged every step and the square would never start to fall.
@@ -176,10 +139,11 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
         continue;
       }
     }
-    int halvings = 0;
+    int halvings = 0, stopped = 0;
     double trial_energy;
     while (true) {
       ws.trial = z + alpha * ws.direction;
+      if (stop_crossings) stopped = stop_friction_crossings(problem, z, ws.trial, ws.crossings);
       trial_energy = timed_energy(ws.trial);
       if (trial_energy <= energy || halvings == settings.max_halvings) break;
       alpha *= 0.5;
@@ -191,8 +155,10 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     }
     // Step expansion (newton.h): the full step was taken and E fell at least 1.5 times
     // what the quadratic model predicts, so the true curvature along p is below half the
-    // model's and its minimiser lies beyond alpha = 2.
-    if (settings.step_expansion && halvings == 0 && alpha == 1.0) {
+    // model's and its minimiser lies beyond alpha = 2. (Not after a crossing stop: the
+    // trial is then off the line z + alpha p.)
+    result.stopped_nodes += stopped;
+    if (settings.step_expansion && halvings == 0 && alpha == 1.0 && stopped == 0) {
       ws.trial2.noalias() = ws.hessian.matrix * ws.direction;
       const double model_decrease =
           -(ws.gradient.dot(ws.direction) + 0.5 * ws.direction.dot(ws.trial2));
@@ -213,13 +179,6 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
         if (step > 1.0) ++result.expanded_steps;
       }
     }
-    if (damp_flips)  // mark the sliding nodes this step carries across u = 0
-      for (int i = 0; i < n; ++i) {
-        if (problem.friction_weight[i] <= 0.0) continue;
-        const double u0 = z[2 * i] - problem.x_start[2 * i],
-                     u1 = ws.trial[2 * i] - problem.x_start[2 * i];
-        if (u0 * u1 < 0.0 && std::abs(u1) >= problem.friction_eps_u) ws.friction_flipped[i] = 1;
-      }
     z.swap(ws.trial);
     energy = trial_energy;
   }

@@ -25,15 +25,15 @@
 //    or a sliding node whose friction is linear); alpha doubles while E keeps falling and
 //    the filters allow, up to 16. Measured at n_seg 64 without friction: the worst step
 //    98 -> 38 iterations.
-//  - friction flip damping: lagged friction is linear while a node slides (|u| >= eps_u
-//    = 1e-5 m) and the exact 1D Hessian has no friction curvature there, so a direction
-//    ~100 eps_u long carries a node that should stick across u = 0, back and forth
-//    (n_seg 256 hit the 100-iteration cap that way). A node whose slip changed sign in an
-//    accepted step gets, while it still slides, the curvature mu_f lambda / |u| of the
-//    friction's quadratic bound through u = 0. The stopping test always uses the
-//    unmodified Hessian: a damped direction below tol is recomputed without damping.
-//    Measured at n_seg 64 (`compress`): 2.99 -> 2.26 Newton iterations per step, the
-//    worst step 61 -> 14 (both safeguards).
+//  - friction crossing stop (core/friction_crossing.h): lagged friction is linear while a
+//    node slides (|u| >= eps_u = 1e-5 m), so the projected Hessian has no friction
+//    curvature there and a direction ~100 eps_u long carries a node that should stick
+//    across u = 0, back and forth (n_seg 256 hit the 100-iteration cap that way). A
+//    sliding node that the trial point carries across u = 0 stops at u = 0 instead.
+//    Measured on `compress`, Newton iterations per step with both safeguards, against
+//    step expansion and the earlier remedy (the curvature mu_f lambda / |u| added to a
+//    node once its slip had changed sign): n_seg 32 1.95 -> 1.57, 64 2.26 -> 1.91,
+//    128 2.67 -> 2.07, 256 4.99 -> MEASURE (worst step 84 -> MEASURE).
 // The linear solve may be inexact (PCG, see linear_solver.h); it is run until the stopping
 // decision is the one the exact direction would give, and each of its directions is a
 // descent direction, so the test and the invariants are exactly those of a direct solve.
@@ -41,6 +41,7 @@
 // minimum (or the last iterate on failure) and a report; never loops forever.
 #pragma once
 
+#include "core/friction_crossing.h"
 #include "core/incremental_potential.h"
 #include "core/linear_solver.h"
 #include "core/step_status.h"
@@ -55,8 +56,8 @@ struct NewtonSettings {
   bool predictor = false;  // warm start from the filtered x^n + h v^n
   double forcing =
       1e-2;  // PCG: stop when a CG step adds < 1% to the model decrease (linear_solver.h)
-  bool step_expansion = true;         // see above
-  bool friction_flip_damping = true;  // see above
+  bool step_expansion = true;          // see above
+  bool friction_crossing_stop = true;  // see above
 };
 
 struct NewtonResult {
@@ -69,7 +70,7 @@ struct NewtonResult {
   double assembly_ms = 0.0;
   double line_search_ms = 0.0;
   int energy_evaluations = 0;
-  int damped_solves = 0;      // directions solved with friction flip damping
+  int stopped_nodes = 0;      // friction nodes stopped at u = 0 in accepted steps
   int expanded_steps = 0;     // accepted steps longer than the Newton step
   int penalty_doublings = 0;  // times the ceiling's penalty stiffness doubled
   LinearSolveStats linear;
@@ -79,10 +80,8 @@ struct NewtonWorkspace {
   SparseHessian hessian;
   LinearSolver solver;  // set up by the caller for the hessian's pattern
   VecX gradient, rhs, direction, trial, trial2;
-  double min_node_mass = 0.0;           // for the PCG error bound (linear_solver.h)
-  std::vector<char> friction_flipped;   // per node, this step (friction flip damping)
-  std::vector<double> damped_diagonal;  // per node: H(x, x) before the damping
-  std::vector<int> damped_nodes;        // the nodes damped in this iteration
+  double min_node_mass = 0.0;  // for the PCG error bound (linear_solver.h)
+  FrictionCrossingScratch crossings;
 };
 
 NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSettings& settings,

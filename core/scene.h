@@ -41,7 +41,7 @@ struct SceneDef {
   Integrator integrator = Integrator::ImplicitEuler;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;  // see core/linear_solver_kind.h
   bool step_expansion = true;                               // Newton's safeguards, core/newton.h
-  bool friction_flip_damping = true;
+  bool friction_crossing_stop = true;
   // [initial]
   Vec2 initial_velocity = Vec2::Zero();
   // [gravity]

@@ -387,8 +387,8 @@ const KeySpec kKeys[] = {
      [](SceneDef& s, const toml::node& n) { return read_bool(n, s.inversion_filter); }},
     {"solver", "step_expansion",
      [](SceneDef& s, const toml::node& n) { return read_bool(n, s.step_expansion); }},
-    {"solver", "friction_flip_damping",
-     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.friction_flip_damping); }},
+    {"solver", "friction_crossing_stop",
+     [](SceneDef& s, const toml::node& n) { return read_bool(n, s.friction_crossing_stop); }},
     {"solver", "integrator",
      [](SceneDef& s, const toml::node& n) {
        return set_enum<Integrator>(n, s.integrator, integrator_from_name,
@@ -756,7 +756,7 @@ std::string scene_to_toml(const SceneDef& s) {
     << integrator_name(s.integrator) << "\"\nlinear_solver = \""
     << linear_solver_name(s.linear_solver)
     << "\"\nstep_expansion = " << (s.step_expansion ? "true" : "false")
-    << "\nfriction_flip_damping = " << (s.friction_flip_damping ? "true" : "false") << "\n";
+    << "\nfriction_crossing_stop = " << (s.friction_crossing_stop ? "true" : "false") << "\n";
   o << "\n[initial]\nvelocity = " << vec(s.initial_velocity) << "\n";
   o << "\n[gravity]\n" << enabled(s.has_gravity) << "g = " << vec(s.gravity) << "\n";
   o << "\n[ground]\n"

@@ -8,7 +8,7 @@
 //   [solver]   projection ("diagonal" | "full" | "none"), inversion_filter,
 //              integrator ("implicit-euler" | "symplectic-euler"),
 //              linear_solver ("auto" | "ldlt" | "cholmod" | "pcg"),
-//              step_expansion, friction_flip_damping (Newton's safeguards, core/newton.h)
+//              step_expansion, friction_crossing_stop (Newton's safeguards, core/newton.h)
 //   [initial]  velocity = [vx, vy]
 //   [gravity]  g = [gx, gy]
 //   [ground]   y, friction

@@ -119,7 +119,7 @@ StepReport implicit_euler_step(Simulation& sim, double& ceiling_new) {
   settings.max_iterations = sim.scene.max_newton;
   settings.inversion_filter = sim.scene.inversion_filter;
   settings.step_expansion = sim.scene.step_expansion;
-  settings.friction_flip_damping = sim.scene.friction_flip_damping;
+  settings.friction_crossing_stop = sim.scene.friction_crossing_stop;
   // Warm start while the ceiling moves (newton.h); at rest Newton starts at x^n as in the
   // reference demo, so a body that settles within the tolerance stops as it does there.
   settings.predictor = sim.scene.has_ceiling && sim.problem.ceiling_target != sim.ceiling_nominal;
@@ -136,7 +136,7 @@ StepReport implicit_euler_step(Simulation& sim, double& ceiling_new) {
   report.factorizations = r.linear.factorizations;
   report.pcg_iterations = r.linear.pcg_iterations;
   report.energy_evaluations = r.energy_evaluations;
-  report.damped_solves = r.damped_solves;
+  report.stopped_nodes = r.stopped_nodes;
   report.expanded_steps = r.expanded_steps;
   report.penalty_doublings = r.penalty_doublings;
   if (r.status == StepStatus::NewtonFailed)

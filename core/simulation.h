@@ -30,7 +30,7 @@ struct StepReport {
   int factorizations = 0;
   int pcg_iterations = 0;
   int energy_evaluations = 0;
-  int damped_solves = 0;  // Newton's safeguards at work (core/newton.h)
+  int stopped_nodes = 0;  // Newton's safeguards at work (core/newton.h)
   int expanded_steps = 0;
   int penalty_doublings = 0;  // the ceiling's penalty doubled (converged short of the target)
 };

@@ -190,7 +190,7 @@ const std::map<std::string, Kind>& key_kinds() {
       {"solver.projection", Kind::Enum},
       {"solver.inversion_filter", Kind::Bool},
       {"solver.step_expansion", Kind::Bool},
-      {"solver.friction_flip_damping", Kind::Bool},
+      {"solver.friction_crossing_stop", Kind::Bool},
       {"solver.integrator", Kind::Enum},
       {"initial.velocity", Kind::Vec2},
       {"solver.linear_solver", Kind::Enum},

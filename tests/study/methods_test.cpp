@@ -45,10 +45,10 @@ TEST(Methods, SettingsAreTheIssuesFamilies) {
   EXPECT_TRUE(s.inversion_filter);
   EXPECT_EQ(s.integrator, Integrator::ImplicitEuler);
   EXPECT_TRUE(s.step_expansion);
-  EXPECT_TRUE(s.friction_flip_damping);
+  EXPECT_TRUE(s.friction_crossing_stop);
   const SceneDef plain = with("plain-line-search");
   EXPECT_FALSE(plain.step_expansion);
-  EXPECT_FALSE(plain.friction_flip_damping);
+  EXPECT_FALSE(plain.friction_crossing_stop);
   EXPECT_EQ(plain.projection, HessianProjection::Diagonal);
   EXPECT_EQ(with("full-eigen-clamp").projection, HessianProjection::Full);
   EXPECT_EQ(with("no-projection").projection, HessianProjection::None);
@@ -63,7 +63,7 @@ TEST(Methods, SettingsAreTheIssuesFamilies) {
             "--set material.model=neo-hookean --set solver.projection=none --set "
             "solver.inversion_filter=true "
             "--set solver.integrator=implicit-euler --set solver.step_expansion=true "
-            "--set solver.friction_flip_damping=true");
+            "--set solver.friction_crossing_stop=true");
 }
 
 TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
