@@ -103,6 +103,14 @@ class LinearSolver {
 constexpr int kNestedDissectionMinUnknowns = 5000;
 constexpr int kParallelLdltMinUnknowns = 1000;
 constexpr int kLdltBins = 2;
+// A PCG preconditioner whose factor has at least this many entries is applied from L
+// rounded to float (SparseLdlt::keep_float_copy): in double it is larger than the 32 MB
+// L3 cache (n_seg 256: 6.4M entries, 51 MB), and its solves, bound by memory traffic, are
+// most of a step. `invfree_bench --benchmark_filter=LdltSolve/n_seg:256`: 8.4-8.5 ms a
+// solve pair in double, 5.8-6.9 ms from float (interleaved runs). A rounded B is still
+// an SPD preconditioner (D stays positive), so PCG and its stopping rules are unchanged;
+// the direct solvers and smaller factors keep double.
+constexpr long kFloatPreconditionerMinEntries = 4'000'000;
 
 // The LDL^T backend's analysis of `pattern` exactly as the solver makes it (ordering and
 // bins above), for benchmarks and tests that time a SparseLdlt of their own.

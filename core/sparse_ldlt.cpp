@@ -60,7 +60,8 @@ void permuted_upper(const Eigen::SparseMatrix<double>& a, const std::vector<int>
 // sum_p lx[p] y[li[p]] over [0, end) in four interleaved partial sums: one running
 // sum would wait for every multiply-add in turn (the backward solve's bottleneck). The
 // order is fixed, so the result does not depend on anything but the factor.
-inline double column_dot(int end, const int* li, const double* lx, const double* y) {
+template <class T>
+inline double column_dot(int end, const int* li, const T* lx, const double* y) {
   double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
   int p = 0;
   for (; p + 4 <= end; p += 4) {
@@ -78,14 +79,15 @@ inline double column_dot(int end, const int* li, const double* lx, const double*
 // each row below gets its contributions from column j0, j0 + 1, ... in turn, but is read
 // and written once instead of once per column. rows: the rows below j1 (`count`, the
 // first `split` of them into y, the rest into acc); lx, lp: L's values and column starts.
+template <class T>
 inline void supernode_forward(int j0, int j1, const int* rows, int count, int split, const int* lp,
-                              const double* lx, double* y, double* acc) {
+                              const T* lx, double* y, double* acc) {
   constexpr int kMaxWidth = 8;
   const int nc = j1 - j0 + 1;
   if (nc > kMaxWidth) {  // wide (a top separator): column by column, many rows each
     for (int j = j0; j <= j1; ++j) {
       const double yj = y[j];
-      const double* v = lx + lp[j];
+      const T* v = lx + lp[j];
       const int inner = j1 - j;
       for (int q = 0; q < inner; ++q) y[j + 1 + q] -= v[q] * yj;
       for (int r = 0; r < split; ++r) y[rows[r]] -= v[inner + r] * yj;
@@ -93,7 +95,7 @@ inline void supernode_forward(int j0, int j1, const int* rows, int count, int sp
     }
     return;
   }
-  const double* v[kMaxWidth];
+  const T* v[kMaxWidth];
   double yc[kMaxWidth];
   for (int c = 0; c < nc; ++c) {
     const int j = j0 + c, inner = j1 - j;
@@ -385,17 +387,31 @@ bool SparseLdlt::factorize(const Eigen::SparseMatrix<double>& a, bool positive_d
   for (int b = 0; b < bins; ++b) ok = ok && ok_bin[b];
   for (std::size_t t = 0; t < top_.size() && ok; ++t)
     factor_rows(top_[t], top_[t] + 1, scratch_[0], positive_definite, ok);
+  if (ok && !lx_float_.empty()) {
+    // Made once every row is done: row k writes entry k of the columns below it.
+    const std::size_t count = lx_.size();
+    const BlockSplit blocks = split_blocks(static_cast<int>(count), 1 << 16, 64);
+    thread_pool().run(blocks.blocks, [&](int b) {
+      for (int k = blocks.begin(b); k < blocks.end(b, static_cast<int>(count)); ++k)
+        lx_float_[k] = static_cast<float>(lx_[k]);
+    });
+  }
   return ok;
 }
 
-void SparseLdlt::solve(const VecX& b, VecX& x) {
+void SparseLdlt::keep_float_copy(bool on) {
+  lx_float_.assign(on ? lx_.size() : 0, 0.0f);
+  lx_float_.shrink_to_fit();
+}
+
+template <class T>
+void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
   const int n = n_;
   double* y = work_.data();
   const int* lp = lp_.data();
   // Column j's rows: sr[sb[j]] .. sr[sb[j] + lp[j + 1] - lp[j] - 1] (share_row_indices).
   const int* sb = solve_row_begin_.data();
   const int* sr = solve_rows_.data();
-  const double* lx = lx_.data();
   const double* d = d_.data();
   for (int i = 0; i < n; ++i) y[old_to_new_[i]] = b[i];
   const int bins = static_cast<int>(scratch_.size());
@@ -435,6 +451,15 @@ void SparseLdlt::solve(const VecX& b, VecX& x) {
       }
   });
   for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];
+}
+
+void SparseLdlt::solve(const VecX& b, VecX& x) {
+  solve_with(lx_.data(), b, x);
+}
+
+void SparseLdlt::solve_float(const VecX& b, VecX& x) {
+  if (lx_float_.empty()) return solve(b, x);
+  solve_with(lx_float_.data(), b, x);
 }
 
 }  // namespace invfree

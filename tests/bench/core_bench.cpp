@@ -130,6 +130,7 @@ BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 
 // One forward + backward solve with the LDL^T factor of a compressed mesh's projected
 // Hessian (the solver's ordering and split): the kernel PCG repeats once per iteration.
+// float:1 reads L rounded to float, as PCG does from kFloatPreconditionerMinEntries.
 // Items: entries of L.
 void BM_LdltSolve(benchmark::State& state) {
   Simulation sim = compressed(static_cast<int>(state.range(0)));
@@ -142,13 +143,24 @@ void BM_LdltSolve(benchmark::State& state) {
     state.SkipWithError("factorisation failed");
     return;
   }
+  const bool use_float = state.range(1) != 0;
+  if (use_float) {
+    ldlt.keep_float_copy(true);
+    if (!ldlt.factorize(h)) {  // the copy is made by a factorisation
+      state.SkipWithError("factorisation failed");
+      return;
+    }
+  }
   const VecX b = VecX::Ones(h.rows());
   VecX x(h.rows());
-  for (auto _ : state) ldlt.solve(b, x);
+  for (auto _ : state) use_float ? ldlt.solve_float(b, x) : ldlt.solve(b, x);
   state.SetItemsProcessed(state.iterations() * ldlt.factor_nonzeros());
   state.counters["L_nonzeros"] = static_cast<double>(ldlt.factor_nonzeros());
 }
-BENCHMARK(BM_LdltSolve)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LdltSolve)
+    ->ArgsProduct({{64, 128, 256}, {0, 1}})
+    ->ArgNames({"n_seg", "float"})
+    ->Unit(benchmark::kMillisecond);
 
 // Steps of `compress` at n_seg = range(0) in the compression phase (steps 120-260): the
 // hardest part of the run. The whole-run medians come from `invfree bench`.

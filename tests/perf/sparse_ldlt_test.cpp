@@ -129,6 +129,26 @@ TEST(SparseLdlt, SolvesReadOneRowListPerSupernode) {
   EXPECT_LT(ldlt.solve_row_indices(), ldlt.factor_nonzeros() / 2);
 }
 
+TEST(SparseLdlt, FloatCopySolvesToSinglePrecisionAndOnlyWhenKept) {
+  const SpMat a = mesh_matrix(24, 1.0, 9u);
+  const VecX b = VecX::LinSpaced(a.rows(), -1.0, 1.0);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  ASSERT_TRUE(ldlt.factorize(a));
+  VecX exact(a.rows()), x(a.rows());
+  ldlt.solve(b, exact);
+  ldlt.solve_float(b, x);  // no copy kept: the double solve, bit for bit
+  EXPECT_EQ(0, std::memcmp(x.data(), exact.data(), sizeof(double) * x.size()));
+  ldlt.keep_float_copy(true);
+  ASSERT_TRUE(ldlt.factorize(a));  // the copy is made by the factorisation
+  ldlt.solve_float(b, x);
+  const double error = (x - exact).norm() / exact.norm();
+  EXPECT_GT(error, 0.0);   // it really read the rounded values
+  EXPECT_LT(error, 1e-5);  // float's 6e-8 per entry, times this matrix's small condition
+  ldlt.solve(b, x);        // the double values are still there
+  EXPECT_EQ(0, std::memcmp(x.data(), exact.data(), sizeof(double) * x.size()));
+}
+
 TEST(SparseLdlt, BitIdenticalForAnyThreadCount) {
   const SpMat a = mesh_matrix(40, 1.0, 6u);
   const VecX b = VecX::LinSpaced(a.rows(), -3.0, 1.0);
