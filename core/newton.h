@@ -33,7 +33,7 @@
 //    Measured on `compress`, Newton iterations per step with both safeguards, against
 //    step expansion and the earlier remedy (the curvature mu_f lambda / |u| added to a
 //    node once its slip had changed sign): n_seg 32 1.95 -> 1.57, 64 2.26 -> 1.91,
-//    128 2.67 -> 2.07, 256 4.99 -> MEASURE (worst step 84 -> MEASURE).
+//    128 2.67 -> 2.07, 256 4.99 -> 3.95 (worst step 84 -> 43).
 // The linear solve may be inexact (PCG, see linear_solver.h); it is run until the stopping
 // decision is the one the exact direction would give, and each of its directions is a
 // descent direction, so the test and the invariants are exactly those of a direct solve.
