@@ -57,8 +57,8 @@ struct LinearSolveStats {
 struct SolveRequest {
   double threshold = 0.0;   // Newton's |p|_inf stopping threshold (tol * h); 0: none
   double lambda_min = 0.0;  // a lower bound on H's smallest eigenvalue (> 0 for PCG)
-  double forcing = 1e-2;  // relative model decrease of the last CG step, for a direction that will
-                          // not stop Newton
+  double forcing = 1e-1;  // relative model decrease of the last CG step, for a direction that will
+                          // not stop Newton (Newton's default, core/newton.h)
 };
 
 class LinearSolver {
