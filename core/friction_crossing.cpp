@@ -2,15 +2,9 @@
 
 #include <cmath>
 
-namespace invfree {
+#include "core/line_search_filter.h"
 
-namespace {
-double signed_area(const VecX& x, const std::array<int, 3>& t) {
-  const double ax = x[2 * t[1]] - x[2 * t[0]], ay = x[2 * t[1] + 1] - x[2 * t[0] + 1];
-  const double bx = x[2 * t[2]] - x[2 * t[0]], by = x[2 * t[2] + 1] - x[2 * t[0] + 1];
-  return ax * by - ay * bx;
-}
-}  // namespace
+namespace invfree {
 
 int stop_friction_crossings(const StepProblem& problem, const VecX& z, VecX& trial,
                             FrictionCrossingScratch& s) {
@@ -41,7 +35,7 @@ int stop_friction_crossings(const StepProblem& problem, const VecX& z, VecX& tri
     restored = false;
     for (const auto& t : problem.mesh->triangles) {
       if (!(s.stopped[t[0]] || s.stopped[t[1]] || s.stopped[t[2]])) continue;
-      if (signed_area(trial, t) >= 0.1 * signed_area(z, t)) continue;
+      if (signed_area(trial, t) >= kMinAreaFraction * signed_area(z, t)) continue;
       for (int v : t)
         if (s.stopped[v]) {
           s.stopped[v] = 0;

@@ -42,9 +42,14 @@ double inversion_free_step(const Mesh& mesh, const VecX& x, const VecX& p) {
     const double area = cross(x21, x31);
     const double a = cross(p21, p31) / area;
     const double b = (cross(x21, p31) + cross(p21, x31)) / area;
-    alpha = std::min(alpha, smallest_positive_root(a, b, 0.9));
+    alpha = std::min(alpha, smallest_positive_root(a, b, 1.0 - kMinAreaFraction));
   }
   return alpha;
+}
+
+double signed_area(const VecX& x, const std::array<int, 3>& t) {
+  return cross(x.segment<2>(2 * t[1]) - x.segment<2>(2 * t[0]),
+               x.segment<2>(2 * t[2]) - x.segment<2>(2 * t[0]));
 }
 
 double plane_step(const PlaneFilter& planes, int node_count, const VecX& x, const VecX& p) {

@@ -18,6 +18,11 @@ double smallest_positive_root(double a, double b, double c);
 
 double inversion_free_step(const Mesh& mesh, const VecX& x, const VecX& p);
 
+// The fraction of its current signed area below which the filter lets no triangle go
+// (the 0.9 of the quadratic above is 1 - this), and that area itself (x: 2N positions).
+constexpr double kMinAreaFraction = 0.1;
+double signed_area(const VecX& x, const std::array<int, 3>& triangle);
+
 struct PlaneFilter {
   bool ground_on = false;
   double ground_y = 0.0;
