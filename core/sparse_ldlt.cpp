@@ -74,54 +74,143 @@ inline double column_dot(int end, const int* li, const T* lx, const double* y) {
   return (s0 + s1) + (s2 + s3);
 }
 
-// The forward solve's updates from the columns [j0, j1] of one supernode, in the order
-// the column-by-column loop makes them: within the diagonal block column by column, then
-// each row below gets its contributions from column j0, j0 + 1, ... in turn, but is read
-// and written once instead of once per column. rows: the rows below j1 (`count`, the
-// first `split` of them into y, the rest into acc); lx, lp: L's values and column starts.
-template <class T>
-inline void supernode_forward(int j0, int j1, const int* rows, int count, int split, const int* lp,
-                              const T* lx, double* y, double* acc) {
-  constexpr int kMaxWidth = 8;
-  const int nc = j1 - j0 + 1;
-  if (nc > kMaxWidth) {  // wide (a top separator): column by column, many rows each
-    for (int j = j0; j <= j1; ++j) {
-      const double yj = y[j];
-      const T* v = lx + lp[j];
-      const int inner = j1 - j;
-      for (int q = 0; q < inner; ++q) y[j + 1 + q] -= v[q] * yj;
-      for (int r = 0; r < split; ++r) y[rows[r]] -= v[inner + r] * yj;
-      for (int r = split; r < count; ++r) acc[rows[r]] -= v[inner + r] * yj;
-    }
-    return;
-  }
-  const T* v[kMaxWidth];
-  double yc[kMaxWidth];
-  for (int c = 0; c < nc; ++c) {
-    const int j = j0 + c, inner = j1 - j;
+// Solves supernode by supernode (a chain j0..j1 whose columns share the rows below j1,
+// share_row_indices), a block of at most kBlock columns at a time: every row a block
+// touches is read (and in the forward solve written) once for all its columns, and its
+// value of y gathered once, instead of once per column. In a fundamental supernode the
+// block [a, b] and the columns after it share the rows b + 1 .. j1 (consecutive) and
+// then the rows below j1 (`rows`, `count`); column c's entries from row b + 1 on start
+// at lx[lp[c] + b - c].
+constexpr int kBlock = 4;
+
+// Forward, L y = b: the block [a, a + W) updates its own rows, then every row below it,
+// the first `split` of `rows` in y and the rest in acc. Each row gets the columns'
+// updates in column order, as a column-by-column loop makes them.
+template <int W, class T>
+inline void forward_block(int a, int j1, const int* rows, int count, int split, const int* lp,
+                          const T* lx, double* y, double* acc) {
+  const int b = a + W - 1;
+  const T* v[W];
+  double yc[W];
+#pragma GCC unroll 8
+  for (int c = 0; c < W; ++c) {
+    const int j = a + c;
     yc[c] = y[j];
-    for (int q = 0; q < inner; ++q) y[j + 1 + q] -= lx[lp[j] + q] * yc[c];
-    v[c] = lx + lp[j] + inner;
+    for (int q = 0; q < b - j; ++q) y[j + 1 + q] -= lx[lp[j] + q] * yc[c];
+    v[c] = lx + lp[j] + (b - j);
   }
+  const int inner = j1 - b;
+  for (int q = 0; q < inner; ++q) {
+    double t = y[b + 1 + q];
+#pragma GCC unroll 8
+    for (int c = 0; c < W; ++c) t -= v[c][q] * yc[c];
+    y[b + 1 + q] = t;
+  }
+#pragma GCC unroll 8
+  for (int c = 0; c < W; ++c) v[c] += inner;
   auto rows_into = [&](double* target, int begin, int end) {
-    if (nc == 2) {
-      const double y0 = yc[0], y1 = yc[1];
-      for (int r = begin; r < end; ++r) {
-        double t = target[rows[r]];
-        t -= v[0][r] * y0;
-        t -= v[1][r] * y1;
-        target[rows[r]] = t;
-      }
-    } else {
-      for (int r = begin; r < end; ++r) {
-        double t = target[rows[r]];
-        for (int c = 0; c < nc; ++c) t -= v[c][r] * yc[c];
-        target[rows[r]] = t;
-      }
+    for (int r = begin; r < end; ++r) {
+      double t = target[rows[r]];
+#pragma GCC unroll 8
+      for (int c = 0; c < W; ++c) t -= v[c][r] * yc[c];
+      target[rows[r]] = t;
     }
   };
   rows_into(y, 0, split);
   rows_into(acc, split, count);
+}
+
+// Backward, D L^T x = y: the block [a, a + W), its last column first, after the columns
+// to its right. The dot products over the shared rows run for all W columns in one pass
+// (two partial sums each, rows alternating, for independent multiply-adds); the entries
+// inside the block come last.
+template <int W, class T>
+inline void backward_block(int a, int j1, const int* rows, int count, const int* lp, const T* lx,
+                           const double* d, double* y) {
+  const int b = a + W - 1;
+  const T* v[W];
+  double even[W], odd[W];
+#pragma GCC unroll 8
+  for (int c = 0; c < W; ++c) {
+    v[c] = lx + lp[a + c] + (b - a - c);
+    even[c] = odd[c] = 0.0;
+  }
+  const int inner = j1 - b;
+  for (int q = 0; q < inner; ++q) {
+    const double yq = y[b + 1 + q];
+#pragma GCC unroll 8
+    for (int c = 0; c < W; ++c) even[c] += v[c][q] * yq;
+  }
+#pragma GCC unroll 8
+  for (int c = 0; c < W; ++c) v[c] += inner;
+  int r = 0;
+  for (; r + 2 <= count; r += 2) {
+    const double ya = y[rows[r]], yb = y[rows[r + 1]];
+#pragma GCC unroll 8
+    for (int c = 0; c < W; ++c) {
+      even[c] += v[c][r] * ya;
+      odd[c] += v[c][r + 1] * yb;
+    }
+  }
+  if (r < count) {
+    const double ya = y[rows[r]];
+#pragma GCC unroll 8
+    for (int c = 0; c < W; ++c) even[c] += v[c][r] * ya;
+  }
+#pragma GCC unroll 8
+  for (int c = W - 1; c >= 0; --c) {
+    const int j = a + c;
+    double within = 0.0;
+    for (int q = 0; q < b - j; ++q) within += lx[lp[j] + q] * y[j + 1 + q];
+    y[j] = y[j] / d[j] - (within + (even[c] + odd[c]));
+  }
+}
+
+// The supernode [j0, j1] in blocks, left to right. rows, count, split: below j1.
+template <class T>
+inline void supernode_forward(int j0, int j1, const int* rows, int count, int split, const int* lp,
+                              const T* lx, double* y, double* acc) {
+  for (int a = j0; a <= j1; a += kBlock) {
+    switch (std::min(kBlock, j1 - a + 1)) {
+      case 1:
+        forward_block<1>(a, j1, rows, count, split, lp, lx, y, acc);
+        break;
+      case 2:
+        forward_block<2>(a, j1, rows, count, split, lp, lx, y, acc);
+        break;
+      case 3:
+        forward_block<3>(a, j1, rows, count, split, lp, lx, y, acc);
+        break;
+      default:
+        forward_block<kBlock>(a, j1, rows, count, split, lp, lx, y, acc);
+    }
+  }
+}
+
+// The supernode [j0, j1] in blocks, right to left (a single column: column_dot's four
+// partial sums).
+template <class T>
+inline void supernode_backward(int j0, int j1, const int* rows, int count, const int* lp,
+                               const T* lx, const double* d, double* y) {
+  if (j0 == j1) {
+    y[j0] = y[j0] / d[j0] - column_dot(count, rows, lx + lp[j0], y);
+    return;
+  }
+  for (int b = j1; b >= j0; b -= kBlock) {
+    switch (std::min(kBlock, b - j0 + 1)) {
+      case 1:
+        backward_block<1>(b, j1, rows, count, lp, lx, d, y);
+        break;
+      case 2:
+        backward_block<2>(b - 1, j1, rows, count, lp, lx, d, y);
+        break;
+      case 3:
+        backward_block<3>(b - 2, j1, rows, count, lp, lx, d, y);
+        break;
+      default:
+        backward_block<kBlock>(b - kBlock + 1, j1, rows, count, lp, lx, d, y);
+    }
+  }
 }
 
 }  // namespace
@@ -213,6 +302,7 @@ void SparseLdlt::share_row_indices() {
   solve_rows_.clear();
   solve_row_begin_.assign(n, 0);
   snode_last_.assign(n, 0);
+  snode_first_.assign(n, 0);
   // Chains do not cross from a bin's subtree into the top (the forward solve handles a
   // supernode at once, and the two are solved at different times).
   for (int first = 0; first < n;) {
@@ -225,6 +315,7 @@ void SparseLdlt::share_row_indices() {
     for (int j = first; j <= last; ++j) {
       solve_row_begin_[j] = base + (j - first);
       snode_last_[j] = last;
+      snode_first_[j] = first;
     }
     first = last + 1;
   }
@@ -440,15 +531,15 @@ void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
     k += static_cast<std::size_t>(last - t + 1);
   }
   // Backward: D L^T x = y, the top first, then the subtrees per bin.
-  for (auto it = top_.rbegin(); it != top_.rend(); ++it) {
-    const int t = *it;
-    y[t] = y[t] / d[t] - column_dot(lp[t + 1] - lp[t], sr + sb[t], lx + lp[t], y);
+  for (std::size_t k = top_.size(); k > 0;) {
+    const int last = top_[k - 1], first = snode_first_[last];
+    supernode_backward(first, last, sr + sb[last], lp[last + 1] - lp[last], lp, lx, d, y);
+    k -= static_cast<std::size_t>(last - first + 1);
   }
   thread_pool().run(bins, [&](int bin) {
     for (int r = range_begin_[bin + 1]; r-- > range_begin_[bin];)
-      for (int j = ranges_[r].second; j-- > ranges_[r].first;) {
-        y[j] = y[j] / d[j] - column_dot(lp[j + 1] - lp[j], sr + sb[j], lx + lp[j], y);
-      }
+      for (int j = ranges_[r].second - 1; j >= ranges_[r].first; j = snode_first_[j] - 1)
+        supernode_backward(snode_first_[j], j, sr + sb[j], lp[j + 1] - lp[j], lp, lx, d, y);
   });
   for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];
 }

@@ -10,8 +10,10 @@
 #include <Eigen/SparseCholesky>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <random>
 
+#include "core/linear_solver.h"
 #include "core/mesh.h"
 #include "core/parallel.h"
 #include "core/sparse_hessian.h"
@@ -72,6 +74,42 @@ TEST(SparseLdlt, SolvesLikeAnIndependentFactorisation) {
       EXPECT_LT(ldlt.serial_fraction(), 0.5);
     }
   }
+}
+
+TEST(SparseLdlt, SolvesSupernodesOfEveryWidth) {
+  // The solves work on blocks of up to four columns of a supernode: a dense matrix is one
+  // supernode as wide as it is (every block width and remainder), and the solver's own
+  // nested-dissection ordering of a larger mesh has wide separators above sparse rows.
+  std::mt19937 rng(11u);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int size = 1; size <= 11; ++size) {
+    Eigen::MatrixXd m(size, size);
+    for (int i = 0; i < size; ++i)
+      for (int j = 0; j <= i; ++j) m(i, j) = m(j, i) = u(rng);
+    m += (size + 1.0) * Eigen::MatrixXd::Identity(size, size);
+    const SpMat a = m.sparseView();
+    const VecX b = VecX::LinSpaced(size, -1.0, 2.0);
+    const VecX exact = m.ldlt().solve(b);
+    std::vector<int> order(size);
+    std::iota(order.begin(), order.end(), 0);
+    SparseLdlt ldlt;
+    ldlt.analyze(a, order, 2);
+    ASSERT_TRUE(ldlt.factorize(a));
+    VecX x(size);
+    ldlt.solve(b, x);
+    EXPECT_LT((x - exact).norm(), 1e-13 * exact.norm()) << "dense, size " << size;
+  }
+  const SpMat a = mesh_matrix(52, 1.0, 12u);
+  ASSERT_GE(a.rows(), kNestedDissectionMinUnknowns);
+  const VecX b = VecX::LinSpaced(a.rows(), -1.0, 2.0);
+  const VecX exact = Eigen::SimplicialLDLT<SpMat>(a).solve(b);
+  SparseLdlt ldlt;
+  analyze_like_the_solver(a, ldlt);
+  ASSERT_TRUE(ldlt.factorize(a));
+  VecX x(a.rows());
+  ldlt.solve(b, x);
+  EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm());
+  EXPECT_LT((a * x - b).norm(), 1e-12 * b.norm());
 }
 
 TEST(SparseLdlt, RefactorisesNewValuesOnTheSamePattern) {
