@@ -74,10 +74,10 @@ inline double column_dot(int end, const int* li, const T* lx, const double* y) {
   return (s0 + s1) + (s2 + s3);
 }
 
-// Solves supernode by supernode (a chain j0..j1 whose columns share the rows below j1,
-// share_row_indices), a block of at most kBlock columns at a time: every row a block
-// touches is read (and in the forward solve written) once for all its columns, and its
-// value of y gathered once, instead of once per column. In a fundamental supernode the
+// The forward solve goes supernode by supernode (a chain j0..j1 whose columns share the
+// rows below j1, share_row_indices), a block of at most kBlock columns at a time: every
+// row a block touches is read and written once for all its columns, instead of once per
+// column, with the very operations a column loop makes. In a fundamental supernode the
 // block [a, b] and the columns after it share the rows b + 1 .. j1 (consecutive) and
 // then the rows below j1 (`rows`, `count`); column c's entries from row b + 1 on start
 // at lx[lp[c] + b - c].
@@ -120,52 +120,6 @@ inline void forward_block(int a, int j1, const int* rows, int count, int split, 
   rows_into(acc, split, count);
 }
 
-// Backward, D L^T x = y: the block [a, a + W), its last column first, after the columns
-// to its right. The dot products over the shared rows run for all W columns in one pass
-// (two partial sums each, rows alternating, for independent multiply-adds); the entries
-// inside the block come last.
-template <int W, class T>
-inline void backward_block(int a, int j1, const int* rows, int count, const int* lp, const T* lx,
-                           const double* d, double* y) {
-  const int b = a + W - 1;
-  const T* v[W];
-  double even[W], odd[W];
-#pragma GCC unroll 8
-  for (int c = 0; c < W; ++c) {
-    v[c] = lx + lp[a + c] + (b - a - c);
-    even[c] = odd[c] = 0.0;
-  }
-  const int inner = j1 - b;
-  for (int q = 0; q < inner; ++q) {
-    const double yq = y[b + 1 + q];
-#pragma GCC unroll 8
-    for (int c = 0; c < W; ++c) even[c] += v[c][q] * yq;
-  }
-#pragma GCC unroll 8
-  for (int c = 0; c < W; ++c) v[c] += inner;
-  int r = 0;
-  for (; r + 2 <= count; r += 2) {
-    const double ya = y[rows[r]], yb = y[rows[r + 1]];
-#pragma GCC unroll 8
-    for (int c = 0; c < W; ++c) {
-      even[c] += v[c][r] * ya;
-      odd[c] += v[c][r + 1] * yb;
-    }
-  }
-  if (r < count) {
-    const double ya = y[rows[r]];
-#pragma GCC unroll 8
-    for (int c = 0; c < W; ++c) even[c] += v[c][r] * ya;
-  }
-#pragma GCC unroll 8
-  for (int c = W - 1; c >= 0; --c) {
-    const int j = a + c;
-    double within = 0.0;
-    for (int q = 0; q < b - j; ++q) within += lx[lp[j] + q] * y[j + 1 + q];
-    y[j] = y[j] / d[j] - (within + (even[c] + odd[c]));
-  }
-}
-
 // The supernode [j0, j1] in blocks, left to right. rows, count, split: below j1.
 template <class T>
 inline void supernode_forward(int j0, int j1, const int* rows, int count, int split, const int* lp,
@@ -187,30 +141,16 @@ inline void supernode_forward(int j0, int j1, const int* rows, int count, int sp
   }
 }
 
-// The supernode [j0, j1] in blocks, right to left (a single column: column_dot's four
-// partial sums).
+// The backward solve, D L^T x = y, for the supernode [j0, j1]: column by column, last
+// first, each a dot product with column_dot's fixed order. (Summing a block's dot
+// products in one pass, as the forward solve's updates are, measured ~15% faster at
+// n_seg 128 but changes the rounding, and n_seg 256's fold steps are sensitive enough
+// to that to reach Newton's iteration cap: see the README's performance notes.)
 template <class T>
-inline void supernode_backward(int j0, int j1, const int* rows, int count, const int* lp,
+inline void supernode_backward(int j0, int j1, const int* sr, const int* sb, const int* lp,
                                const T* lx, const double* d, double* y) {
-  if (j0 == j1) {
-    y[j0] = y[j0] / d[j0] - column_dot(count, rows, lx + lp[j0], y);
-    return;
-  }
-  for (int b = j1; b >= j0; b -= kBlock) {
-    switch (std::min(kBlock, b - j0 + 1)) {
-      case 1:
-        backward_block<1>(b, j1, rows, count, lp, lx, d, y);
-        break;
-      case 2:
-        backward_block<2>(b - 1, j1, rows, count, lp, lx, d, y);
-        break;
-      case 3:
-        backward_block<3>(b - 2, j1, rows, count, lp, lx, d, y);
-        break;
-      default:
-        backward_block<kBlock>(b - kBlock + 1, j1, rows, count, lp, lx, d, y);
-    }
-  }
+  for (int j = j1; j >= j0; --j)
+    y[j] = y[j] / d[j] - column_dot(lp[j + 1] - lp[j], sr + sb[j], lx + lp[j], y);
 }
 
 }  // namespace
@@ -533,13 +473,13 @@ void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
   // Backward: D L^T x = y, the top first, then the subtrees per bin.
   for (std::size_t k = top_.size(); k > 0;) {
     const int last = top_[k - 1], first = snode_first_[last];
-    supernode_backward(first, last, sr + sb[last], lp[last + 1] - lp[last], lp, lx, d, y);
+    supernode_backward(first, last, sr, sb, lp, lx, d, y);
     k -= static_cast<std::size_t>(last - first + 1);
   }
   thread_pool().run(bins, [&](int bin) {
     for (int r = range_begin_[bin + 1]; r-- > range_begin_[bin];)
       for (int j = ranges_[r].second - 1; j >= ranges_[r].first; j = snode_first_[j] - 1)
-        supernode_backward(snode_first_[j], j, sr + sb[j], lp[j + 1] - lp[j], lp, lx, d, y);
+        supernode_backward(snode_first_[j], j, sr, sb, lp, lx, d, y);
   });
   for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];
 }

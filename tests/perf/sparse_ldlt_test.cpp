@@ -77,7 +77,7 @@ TEST(SparseLdlt, SolvesLikeAnIndependentFactorisation) {
 }
 
 TEST(SparseLdlt, SolvesSupernodesOfEveryWidth) {
-  // The solves work on blocks of up to four columns of a supernode: a dense matrix is one
+  // The forward solve works on blocks of up to four columns of a supernode: a dense matrix is one
   // supernode as wide as it is (every block width and remainder), and the solver's own
   // nested-dissection ordering of a larger mesh has wide separators above sparse rows.
   std::mt19937 rng(11u);
