@@ -80,7 +80,8 @@ inline double column_dot(int end, const int* li, const T* lx, const double* y) {
 // column, with the very operations a column loop makes. In a fundamental supernode the
 // block [a, b] and the columns after it share the rows b + 1 .. j1 (consecutive) and
 // then the rows below j1 (`rows`, `count`); column c's entries from row b + 1 on start
-// at lx[lp[c] + b - c].
+// at lx[lp[c] + b - c]. (The loops over a block's columns are unrolled so that its
+// pointers and values stay in registers.)
 constexpr int kBlock = 4;
 
 // Forward, L y = b: the block [a, a + W) updates its own rows, then every row below it,
