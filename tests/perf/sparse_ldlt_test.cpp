@@ -77,9 +77,10 @@ TEST(SparseLdlt, SolvesLikeAnIndependentFactorisation) {
 }
 
 TEST(SparseLdlt, SolvesSupernodesOfEveryWidth) {
-  // The forward solve works on blocks of up to four columns of a supernode: a dense matrix is one
-  // supernode as wide as it is (every block width and remainder), and the solver's own
-  // nested-dissection ordering of a larger mesh has wide separators above sparse rows.
+  // The forward solve works on blocks of up to four columns of a supernode: a dense
+  // matrix is one supernode as wide as it is (every block width and remainder), and the
+  // solver's own nested-dissection ordering of a larger mesh has wide separators above
+  // sparse rows.
   std::mt19937 rng(11u);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int size = 1; size <= 11; ++size) {
