@@ -20,8 +20,8 @@
 // indices per fundamental supernode instead of one per column, and the forward solve
 // works on blocks of up to four of a supernode's columns, reading and writing each row
 // below a block once (the values and the order of every operation are unchanged, so are
-// the bits): n_seg 128, ~1.7 -> 1.2 ms a solve pair with the shared lists; n_seg 256
-// (float), ~9 -> ~7.5 ms with the blocks.
+// the bits): n_seg 128, ~1.7 -> 1.2 ms a solve pair with the shared lists, and ~1.1 ->
+// ~0.85 ms with the blocks (n_seg 256: inside the machine's noise).
 //
 // Inputs: the full symmetric pattern (CSC, both triangles, sorted) and a fill-reducing
 // ordering; then values on that same pattern. No allocation after `analyze`.
