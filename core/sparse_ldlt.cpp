@@ -142,18 +142,6 @@ inline void supernode_forward(int j0, int j1, const int* rows, int count, int sp
   }
 }
 
-// The backward solve, D L^T x = y, for the supernode [j0, j1]: column by column, last
-// first, each a dot product with column_dot's fixed order. (Summing a block's dot
-// products in one pass, as the forward solve's updates are, measured ~15% faster at
-// n_seg 128 but changes the rounding, and n_seg 256's fold steps are sensitive enough
-// to that to reach Newton's iteration cap: see the README's performance notes.)
-template <class T>
-inline void supernode_backward(int j0, int j1, const int* sr, const int* sb, const int* lp,
-                               const T* lx, const double* d, double* y) {
-  for (int j = j1; j >= j0; --j)
-    y[j] = y[j] / d[j] - column_dot(lp[j + 1] - lp[j], sr + sb[j], lx + lp[j], y);
-}
-
 }  // namespace
 
 void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
@@ -227,6 +215,7 @@ void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
   plan(std::clamp(bins, 1, 64));
   share_row_indices();
   work_.resize(n);
+  if (!lx_float_.empty()) keep_float_copy(true);  // a kept copy follows the new factor's size
 }
 
 // Where the solves read each column's row indices. In a chain j, j + 1, ..., last where
@@ -243,7 +232,6 @@ void SparseLdlt::share_row_indices() {
   solve_rows_.clear();
   solve_row_begin_.assign(n, 0);
   snode_last_.assign(n, 0);
-  snode_first_.assign(n, 0);
   // Chains do not cross from a bin's subtree into the top (the forward solve handles a
   // supernode at once, and the two are solved at different times).
   for (int first = 0; first < n;) {
@@ -256,7 +244,6 @@ void SparseLdlt::share_row_indices() {
     for (int j = first; j <= last; ++j) {
       solve_row_begin_[j] = base + (j - first);
       snode_last_[j] = last;
-      snode_first_[j] = first;
     }
     first = last + 1;
   }
@@ -472,15 +459,19 @@ void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
     k += static_cast<std::size_t>(last - t + 1);
   }
   // Backward: D L^T x = y, the top first, then the subtrees per bin.
-  for (std::size_t k = top_.size(); k > 0;) {
-    const int last = top_[k - 1], first = snode_first_[last];
-    supernode_backward(first, last, sr, sb, lp, lx, d, y);
-    k -= static_cast<std::size_t>(last - first + 1);
+  // Column by column, each a dot product in column_dot's fixed order. (Summing a
+  // supernode block's dot products in one pass, as the forward solve's updates are,
+  // measured ~15% faster at n_seg 128 but changes the rounding, and n_seg 256's fold
+  // steps are sensitive enough to that to reach Newton's iteration cap: see the README's
+  // performance notes.)
+  for (auto it = top_.rbegin(); it != top_.rend(); ++it) {
+    const int t = *it;
+    y[t] = y[t] / d[t] - column_dot(lp[t + 1] - lp[t], sr + sb[t], lx + lp[t], y);
   }
   thread_pool().run(bins, [&](int bin) {
     for (int r = range_begin_[bin + 1]; r-- > range_begin_[bin];)
-      for (int j = ranges_[r].second - 1; j >= ranges_[r].first; j = snode_first_[j] - 1)
-        supernode_backward(snode_first_[j], j, sr, sb, lp, lx, d, y);
+      for (int j = ranges_[r].second; j-- > ranges_[r].first;)
+        y[j] = y[j] / d[j] - column_dot(lp[j + 1] - lp[j], sr + sb[j], lx + lp[j], y);
   });
   for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];
 }

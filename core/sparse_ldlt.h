@@ -94,7 +94,7 @@ class SparseLdlt {
   // The solves' row indices: column j's are solve_rows_[solve_row_begin_[j] ..], one list
   // per supernode (share_row_indices).
   std::vector<int> solve_rows_, solve_row_begin_;
-  std::vector<int> snode_first_, snode_last_;  // per column: its supernode's first and last
+  std::vector<int> snode_last_;  // per column: the last column of its supernode
   VecX work_;
   double factor_flops_ = 0.0, solve_flops_ = 0.0, serial_fraction_ = 0.0;
 };
