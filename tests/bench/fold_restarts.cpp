@@ -66,6 +66,10 @@ int main(int argc, char** argv) {
 
   SceneDef scene = *find_builtin_scene("compress");
   scene.n_seg = n_seg;
+  if (const std::string error = validate_scene(scene); !error.empty()) {
+    std::fprintf(stderr, "n_seg %d: %s\n", n_seg, error.c_str());
+    return 2;
+  }
   Simulation sim = make_simulation(scene);
   while (sim.step_count < from) {
     const StepReport r = step(sim);
