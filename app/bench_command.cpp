@@ -42,6 +42,9 @@ struct BenchOptions {
 struct BenchRow {
   int n_seg = 0, nodes = 0, triangles = 0, dofs = 0, steps = 0;
   double mean_ms = 0, median_ms = 0, newton = 0;
+  // The step that took the most Newton iterations (1-based) and how many: how close the
+  // run came to Newton's iteration cap (n_seg 256's fold steps, README: Performance).
+  int newton_worst = 0, newton_worst_step = 0;
   double assembly = 0, factor = 0, solve = 0, line_search = 0, other = 0;
   double pcg = 0, factorizations = 0;
   std::string solver;
@@ -110,6 +113,10 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     }
     ms.push_back(r.wall_ms);
     newton += r.newton_iterations;
+    if (r.newton_iterations > row.newton_worst) {
+      row.newton_worst = r.newton_iterations;
+      row.newton_worst_step = k + 1;
+    }
     pcg += r.pcg_iterations;
     factorizations += r.factorizations;
     row.assembly += r.assembly_ms;
@@ -150,14 +157,16 @@ std::string fmt(double v, int precision = 4) {
 
 std::string csv_text(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
-  o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,assembly_ms,"
-       "factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,factorizations_per_step,solver\n";
+  o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,newton_worst,"
+       "newton_worst_step,assembly_ms,factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,"
+       "factorizations_per_step,solver\n";
   for (const auto& r : rows)
     o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
       << fmt(r.mean_ms, 6) << "," << fmt(r.median_ms, 6) << "," << fmt(r.newton, 5) << ","
-      << fmt(r.assembly, 6) << "," << fmt(r.factor, 6) << "," << fmt(r.solve, 6) << ","
-      << fmt(r.line_search, 6) << "," << fmt(r.other, 6) << "," << fmt(r.pcg, 5) << ","
-      << fmt(r.factorizations, 5) << "," << r.solver << "\n";
+      << r.newton_worst << "," << r.newton_worst_step << "," << fmt(r.assembly, 6) << ","
+      << fmt(r.factor, 6) << "," << fmt(r.solve, 6) << "," << fmt(r.line_search, 6) << ","
+      << fmt(r.other, 6) << "," << fmt(r.pcg, 5) << "," << fmt(r.factorizations, 5) << ","
+      << r.solver << "\n";
   return o.str();
 }
 
@@ -282,9 +291,9 @@ int run_bench(const BenchOptions& opt) {
   if (opt.threads > 0) set_thread_count(opt.threads);
   install_interrupt_handler();
 
-  std::printf("%-6s %8s %10s %6s %10s %10s %7s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
-              "triangles", "steps", "median_ms", "mean_ms", "newton", "assembly", "factor", "solve",
-              "search", "pcg", "solver");
+  std::printf("%-6s %8s %10s %6s %10s %10s %7s %6s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
+              "triangles", "steps", "median_ms", "mean_ms", "newton", "worst", "assembly", "factor",
+              "solve", "search", "pcg", "solver");
   const bool reference = is_reference_scene(*scene);
   std::vector<BenchRow> rows;
   int code = exit_code::kOk;
@@ -298,10 +307,10 @@ int run_bench(const BenchOptions& opt) {
     for (int k = 0; k < 3; ++k)
       if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
         speedup = "  " + fmt(kReferenceMs[k] / row.median_ms, 4) + "x the reference";
-    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n",
+    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %6d %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n",
                 row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms,
-                row.newton, row.assembly, row.factor, row.solve, row.line_search, row.pcg,
-                row.solver.c_str(), speedup.c_str());
+                row.newton, row.newton_worst, row.assembly, row.factor, row.solve, row.line_search,
+                row.pcg, row.solver.c_str(), speedup.c_str());
     std::fflush(stdout);
     if (!ok) break;
   }

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/scene.h"
 #include "tests/reliability/process.h"
 
 namespace invfree {
@@ -58,7 +59,16 @@ TEST(BenchCommand, WritesTheTableAndTheChart) {
     const double parts = std::stod(row[col("assembly_ms")]) + std::stod(row[col("factor_ms")]) +
                          std::stod(row[col("solve_ms")]) + std::stod(row[col("line_search_ms")]);
     EXPECT_LE(parts, mean * 1.0001 + 1e-6);
-    EXPECT_GE(std::stod(row[col("newton_per_step")]), 0.0);
+    const double newton = std::stod(row[col("newton_per_step")]);
+    EXPECT_GE(newton, 1.0);  // every step takes at least one Newton step
+    // The worst step: a whole number of iterations, at least the mean, at most the scene's
+    // cap, at one of the steps that ran.
+    const int worst = std::stoi(row[col("newton_worst")]);
+    const int worst_step = std::stoi(row[col("newton_worst_step")]);
+    EXPECT_GE(worst, newton);
+    EXPECT_LE(worst, find_builtin_scene("compress")->max_newton);
+    EXPECT_GE(worst_step, 1);
+    EXPECT_LE(worst_step, 20);
   }
   const std::string png = test::slurp(dir + "/bench.png");
   ASSERT_GT(png.size(), 1000u);
