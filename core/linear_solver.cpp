@@ -14,6 +14,7 @@
 
 #include "core/parallel.h"
 #include "core/sparse_ldlt.h"
+#include "core/submatrix_ldlt.h"
 
 namespace invfree {
 
@@ -340,11 +341,15 @@ struct LinearSolver::Impl {
   double iter_cost = 0.0;    // flops of one PCG iteration (a solve, a product, vector work)
   VecX r, z, p, hp, t;
   // Diagonal correction of the reused factor (see prepare_correction).
-  std::vector<int> diag_pos;  // position of H(i, i) in the value array
-  VecX factored_diag;         // diag(H) when the factor was computed
-  std::vector<int> changed;   // unknowns whose diagonal moved by more than 30% since
-  std::vector<char> is_changed;
-  VecX smoother;  // omega_i / H(i, i) on `changed`
+  std::vector<int> diag_pos;     // position of H(i, i) in the value array
+  VecX factored_diag;            // diag(H) when the factor was computed
+  std::vector<int> changed;      // unknowns whose diagonal moved by more than 30% since
+  std::vector<char> is_changed;  // 1 on `changed`, 2 on the rest of `block_set`
+  std::vector<int> block_set;    // D: `changed` and its neighbours
+  SubmatrixLdlt block;           // H_DD = L D L^T, when use_block
+  bool use_block = false;
+  VecX block_x;
+  VecX smoother;  // omega_i / H(i, i) on `changed` (the fallback)
 
   bool factorize(const SpMat& h, LinearSolveStats& stats) {
     const auto t0 = Clock::now();
@@ -366,28 +371,39 @@ struct LinearSolver::Impl {
 
   // The reused factor B = A_old^-1 goes stale mostly through a few diagonal entries: the
   // contact barriers' and friction's stiffness on the nodes near a plane change by large
-  // factors from one iteration to the next, the elasticity only slowly. Those unknowns C
-  // (diagonal moved by more than kChangedDiagonal) get a Jacobi smoother S = W D_C^-1
-  // around B, the symmetric multiplicative combination
+  // factors from one iteration to the next (friction's whenever a node starts or stops
+  // sliding), the elasticity only slowly. Those unknowns C (diagonal moved by more than
+  // kChangedDiagonal) and their neighbours in H's graph, the set D, get an exact block
+  // solve S = H_DD^-1 (core/submatrix_ldlt.h) around B, the symmetric multiplicative
+  // (Schwarz) combination
   //   z = S r;  z += B (r - H z);  z += S (r - H z)
   // i.e. M^-1 = (I - S H) B (I - H S) + S (2 S^-1 - H) S, symmetric positive definite
-  // when 2 S^-1 - H_CC is. The weights w_i = min(1, 1.9 / (1 + R_i)), R_i the Gershgorin
-  // radius of row i of D^-1/2 H_CC D^-1/2, make 2 S^-1 - H_CC diagonally dominant, so
-  // it is. Measured at n_seg 64 during compression: 4 PCG iterations (relative residual
-  // 1e-2) with a factor 9 steps old, against 28 without the correction.
+  // because 2 S^-1 - H_DD = H_DD is. Where B treated a node as held by friction that now
+  // slides (or the reverse), the block carries the change to the neighbours the node
+  // pulls on; a diagonal smoother on C alone cannot. Measured on `compress`, CG
+  // iterations per step at n_seg 32 / 64 / 128 / 256 (`invfree bench`): 5.7 / 8.7 / 14.5 /
+  // 28.6 with the Jacobi smoother on C, 5.1 / 7.5 / 10.1 / 19.2 with this block (and
+  // 12.5 at n_seg 128 with the block on C alone, without the neighbours); at n_seg 256 the
+  // median step went from 244-252 to 204 ms and the mean from 363-400 to 287 ms.
+  // A set D larger than the block's buffers (n / 8 unknowns, 32 envelope entries per
+  // unknown) means the factor is too stale to be worth correcting: that solve falls back to
+  // a Jacobi smoother S = W D_C^-1 on C and the next one refactorises. Its weights
+  // w_i = min(1, 1.9 / (1 + R_i)), R_i the Gershgorin radius of row i of
+  // D^-1/2 H_CC D^-1/2, make 2 S^-1 - H_CC diagonally dominant, so again positive definite.
   // The threshold: during compression the elasticity moves a fifth of the diagonal by
   // 10-30% within a few steps, which the factor absorbs (CG iterations per step at n_seg
-  // 64 / 128 / 256: 9.6 / 15.1 / 35.1 at 10%, 9.8 / 15.0 / 37.3 at 30%), while the
-  // smoother's two serial passes over those rows cost up to a third of a CG iteration: at
-  // n_seg 256 its median |C| is 27,600 unknowns at 10% and 87 at 30%.
+  // 64 / 128 / 256 with the Jacobi smoother: 9.6 / 15.1 / 35.1 at 10%, 9.8 / 15.0 / 37.3
+  // at 30%; at n_seg 256 the median |C| is 27,600 unknowns at 10% and 87 at 30%).
   static constexpr double kChangedDiagonal = 0.3;
   void prepare_correction(const SpMat& h) {
     const int n = static_cast<int>(diag_pos.size());
     const double* v = h.valuePtr();
     const int* outer = h.outerIndexPtr();
     const int* inner = h.innerIndexPtr();
-    for (int i : changed) is_changed[i] = 0;
+    for (int i : block_set) is_changed[i] = 0;
+    block_set.clear();
     changed.clear();
+    use_block = false;
     for (int i = 0; i < n; ++i) {
       const double d = v[diag_pos[i]];
       if (std::abs(d - factored_diag[i]) > kChangedDiagonal * factored_diag[i]) {
@@ -395,12 +411,27 @@ struct LinearSolver::Impl {
         is_changed[i] = 1;
       }
     }
+    if (changed.empty()) return;
+    // D: C and its neighbours (is_changed 2), up to the block's capacity.
+    block_set = changed;
+    const std::size_t capacity = static_cast<std::size_t>(block.max_size());
+    for (std::size_t a = 0; a < changed.size() && block_set.size() <= capacity; ++a) {
+      const int i = changed[a];
+      for (int k = outer[i]; k < outer[i + 1]; ++k)
+        if (!is_changed[inner[k]]) {
+          is_changed[inner[k]] = 2;
+          block_set.push_back(inner[k]);
+        }
+    }
+    use_block = block_set.size() <= capacity && block.factorize(h, block_set);
+    if (use_block) return;
+    refresh = true;  // too stale for the block: Jacobi on C now, a new factor next solve
     for (int i : changed) {
       const double di = v[diag_pos[i]];
       double radius = 0.0;
       for (int k = outer[i]; k < outer[i + 1]; ++k) {
         const int j = inner[k];
-        if (j != i && is_changed[j]) radius += std::abs(v[k]) / std::sqrt(di * v[diag_pos[j]]);
+        if (j != i && is_changed[j] == 1) radius += std::abs(v[k]) / std::sqrt(di * v[diag_pos[j]]);
       }
       smoother[i] = std::min(1.0, 1.9 / (1.0 + radius)) / di;
     }
@@ -412,6 +443,26 @@ struct LinearSolver::Impl {
     const double* v = h.valuePtr();
     const int* outer = h.outerIndexPtr();
     const int* inner = h.innerIndexPtr();
+    if (use_block) {
+      const int m = block.size();
+      block.solve(in, block_x);  // z1 = S in
+      t = in;
+      for (int a = 0; a < m; ++a) {
+        const int i = block_set[a];
+        for (int k = outer[i]; k < outer[i + 1]; ++k) t[inner[k]] -= v[k] * block_x[a];
+      }
+      if (!apply_factor(t, out)) return false;
+      for (int a = 0; a < m; ++a) out[block_set[a]] += block_x[a];
+      for (int a = 0; a < m; ++a) {  // t = in - H out on D
+        const int i = block_set[a];
+        double hz = 0.0;
+        for (int k = outer[i]; k < outer[i + 1]; ++k) hz += v[k] * out[inner[k]];
+        t[i] = in[i] - hz;
+      }
+      block.solve(t, block_x);
+      for (int a = 0; a < m; ++a) out[block_set[a]] += block_x[a];
+      return true;
+    }
     // t = in - H z1 with z1 = S in (nonzero on C only: columns of C).
     t = in;
     for (int i : changed) {
@@ -532,6 +583,10 @@ void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool posit
   s.factored_diag.resize(n);
   s.changed.reserve(n);
   s.is_changed.assign(n, 0);
+  s.block_set.reserve(n + 1);
+  const int block_size = std::max(64, n / 8);
+  s.block.reserve(n, block_size, 32L * block_size);
+  s.block_x.resize(block_size);
   s.smoother.resize(n);
 }
 
