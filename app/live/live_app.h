@@ -25,9 +25,10 @@ namespace invfree::live {
 
 // The n_seg slider's maximum: the largest mesh that still ran at >= 30 frames/s in
 // `invfree live --frames 300 --bench` under Xvfb on the project's 2-core machine, idle
-// (README, "Live classroom mode": 92 at 30.4 and 32.2 frames/s, 96 at 23.0-30.6). Larger meshes can
-// still be loaded from a scene file or --set, or allowed with --max-n-seg.
-constexpr int kDefaultMaxSegments = 92;
+// (README, "Live classroom mode": 112 at 31.8, 33.1 and 32.4 frames/s, 116 at 31.3 and
+// 29.1). Larger meshes can still be loaded from a scene file or --set, or allowed with
+// --max-n-seg.
+constexpr int kDefaultMaxSegments = 112;
 
 struct LiveOptions {
   std::vector<SceneChoice> scenes;  // the scene picker; not empty
