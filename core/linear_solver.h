@@ -7,7 +7,10 @@
 //  - PCG preconditioned by a *reused* factorisation: H changes little from one Newton
 //    iteration (and one step) to the next, so the factor of an earlier H is an excellent
 //    preconditioner and a few conjugate-gradient iterations (one sparse product and one
-//    pair of triangular solves each) replace a fresh factorisation. The factor is renewed
+//    pair of triangular solves each) replace a fresh factorisation. Where the contact
+//    terms moved since (a diagonal entry by more than 30%), an exact block solve on those
+//    unknowns and their neighbours (core/submatrix_ldlt.h) corrects the old factor, in a
+//    symmetric combination that stays positive definite. The factor is renewed
 //    when the iterations it saves no longer pay for one (a cost model in flops, not clock
 //    time, so runs stay bit-for-bit reproducible), and at once when PCG does not converge
 //    within the cost of a factorisation: the direct solve is always the fallback.
