@@ -384,7 +384,7 @@ struct LinearSolver::Impl {
   // iterations per step at n_seg 32 / 64 / 128 / 256 (`invfree bench`): 5.7 / 8.7 / 14.5 /
   // 28.6 with the Jacobi smoother on C, 5.1 / 7.5 / 10.1 / 19.2 with this block (and
   // 12.5 at n_seg 128 with the block on C alone, without the neighbours); at n_seg 256 the
-  // median step went from 244-252 to 204 ms and the mean from 363-400 to 287 ms.
+  // median step went from 244-252 to 204-234 ms and the mean from 363-400 to 287-302 ms.
   // A set D larger than the block's buffers (n / 8 unknowns, 32 envelope entries per
   // unknown) means the factor is too stale to be worth correcting: that solve falls back to
   // a Jacobi smoother S = W D_C^-1 on C and the next one refactorises. Its weights
@@ -583,10 +583,12 @@ void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool posit
   s.factored_diag.resize(n);
   s.changed.reserve(n);
   s.is_changed.assign(n, 0);
-  s.block_set.reserve(n + 1);
-  const int block_size = std::max(64, n / 8);
-  s.block.reserve(n, block_size, 32L * block_size);
-  s.block_x.resize(block_size);
+  if (s.pcg) {
+    s.block_set.reserve(n);
+    const int block_size = std::max(64, n / 8);
+    s.block.reserve(n, block_size, 32L * block_size);
+    s.block_x.resize(block_size);
+  }
   s.smoother.resize(n);
 }
 
