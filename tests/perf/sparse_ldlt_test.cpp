@@ -17,36 +17,12 @@
 #include "core/mesh.h"
 #include "core/parallel.h"
 #include "core/sparse_hessian.h"
+#include "tests/perf/mesh_matrix.h"
 
 namespace invfree {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
-
-// A matrix on the Newton system's pattern (mesh pairs plus the dense ceiling row) with
-// random symmetric off-diagonal values and diagonal `shift` + the row's absolute sum: SPD
-// for shift > 0; shift < 0 makes some diagonal entries negative (indefinite).
-SpMat mesh_matrix(int n_seg, double shift, unsigned seed) {
-  const SparseHessian hess = build_sparse_hessian(square_mesh(1.0, n_seg), true);
-  SpMat a = hess.matrix;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int col = 0; col < a.outerSize(); ++col)
-    for (SpMat::InnerIterator it(a, col); it; ++it)
-      if (it.row() < col) {
-        const double v = u(rng);
-        it.valueRef() = v;
-        a.coeffRef(col, it.row()) = v;
-      }
-  for (int col = 0; col < a.outerSize(); ++col) {
-    double sum = 0.0;
-    for (SpMat::InnerIterator it(a, col); it; ++it)
-      if (it.row() != col) sum += std::abs(it.value());
-    a.coeffRef(col, col) =
-        sum + (shift < 0.0 && col % 7 == 3 ? shift - 2.0 * sum : std::abs(shift));
-  }
-  return a;
-}
 
 std::vector<int> amd_order(const SpMat& a) {
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;

@@ -10,35 +10,12 @@
 #include <Eigen/SparseCholesky>
 #include <random>
 
-#include "core/mesh.h"
-#include "core/sparse_hessian.h"
+#include "tests/perf/mesh_matrix.h"
 
 namespace invfree {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
-
-// The Newton system's pattern at n_seg (mesh pairs, the ceiling's dense row last) with
-// random symmetric values, diagonally dominant: SPD.
-SpMat spd_mesh_matrix(int n_seg, unsigned seed) {
-  SpMat a = build_sparse_hessian(square_mesh(1.0, n_seg), true).matrix;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int col = 0; col < a.outerSize(); ++col)
-    for (SpMat::InnerIterator it(a, col); it; ++it)
-      if (it.row() < col) {
-        const double v = u(rng);
-        it.valueRef() = v;
-        a.coeffRef(col, it.row()) = v;
-      }
-  for (int col = 0; col < a.outerSize(); ++col) {
-    double sum = 0.0;
-    for (SpMat::InnerIterator it(a, col); it; ++it)
-      if (it.row() != col) sum += std::abs(it.value());
-    a.coeffRef(col, col) = sum + 0.1;
-  }
-  return a;
-}
 
 // H_DD x = b_D by Eigen's own LDL^T of the extracted submatrix.
 VecX reference_solve(const SpMat& h, const std::vector<int>& set, const VecX& rhs) {
@@ -71,7 +48,7 @@ std::vector<int> strip(int n_seg, int row0, int row1) {
 
 TEST(SubmatrixLdlt, SolvesEveryKindOfSetOfTheNewtonSystem) {
   const int n_seg = 24;
-  const SpMat h = spd_mesh_matrix(n_seg, 7);
+  const SpMat h = mesh_matrix(n_seg, 0.1, 7);
   const int n = static_cast<int>(h.rows());
   const int ceiling = n - 1;
   std::mt19937 rng(11);
@@ -103,7 +80,7 @@ TEST(SubmatrixLdlt, KeepsAStripWithinANarrowBand) {
   // Two rows of nodes along the ground and the ceiling's unknown: the envelope of the
   // natural (row by row) order would hold ~ 2 (n_seg + 1) entries per row.
   const int n_seg = 64;
-  const SpMat h = spd_mesh_matrix(n_seg, 3);
+  const SpMat h = mesh_matrix(n_seg, 0.1, 3);
   std::vector<int> set = strip(n_seg, 0, 1);
   for (int i : strip(n_seg, n_seg, n_seg)) set.push_back(i);
   set.push_back(static_cast<int>(h.rows()) - 1);
@@ -116,7 +93,7 @@ TEST(SubmatrixLdlt, KeepsAStripWithinANarrowBand) {
 
 TEST(SubmatrixLdlt, RefusesWhatDoesNotFitOrIsNotPositiveDefinite) {
   const int n_seg = 16;
-  SpMat h = spd_mesh_matrix(n_seg, 5);
+  SpMat h = mesh_matrix(n_seg, 0.1, 5);
   const int n = static_cast<int>(h.rows());
   const std::vector<int> set = strip(n_seg, 0, 2);
   SubmatrixLdlt block;
