@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace invfree {
 
@@ -18,6 +19,7 @@ void SubmatrixLdlt::reserve(int n, int max_size, long max_envelope) {
   work_.assign(max_size, 0.0);
   mark_.assign(max_size, 0);
   placed_.assign(max_size, 0);
+  by_degree_.assign(max_size, 0);
   set_.clear();
   set_.reserve(max_size);
   m_ = 0;
@@ -76,10 +78,14 @@ void SubmatrixLdlt::order(const Eigen::SparseMatrix<double>& h, const std::vecto
   };
   int sparse = 0;
   for (int a = 0; a < m; ++a) sparse += degree_[a] <= kDenseDegree;
+  // Each component starts from its least connected node: the first one not yet placed in
+  // by_degree_ (a scan of all nodes per component would be quadratic in scattered sets).
+  std::iota(by_degree_.begin(), by_degree_.begin() + m, 0);
+  std::sort(by_degree_.begin(), by_degree_.begin() + m, fewer);
+  int next = 0;
   for (int count = 0; count < sparse;) {
-    int start = -1;
-    for (int a = 0; a < m; ++a)
-      if (!placed_[a] && (start < 0 || fewer(a, start))) start = a;
+    while (placed_[by_degree_[next]]) ++next;
+    int start = by_degree_[next];
     // A pseudo-peripheral start: the least connected node of the last level, while the
     // search from it goes deeper.
     int last = 0, levels = 0;

@@ -50,9 +50,10 @@ class SubmatrixLdlt {
   std::vector<int> first_;       // per RCM row: its first column in the envelope
   std::vector<long> env_begin_;  // per RCM row: where its envelope entries start
   std::vector<double> env_, d_, row_, work_;
-  std::vector<int> mark_;     // per place in `set`: the breadth-first search that reached it
-  std::vector<char> placed_;  // per place in `set`: already in the ordering
-  std::vector<int> set_;      // the set given to factorize (solve reads it)
+  std::vector<int> mark_;       // per place in `set`: the breadth-first search that reached it
+  std::vector<char> placed_;    // per place in `set`: already in the ordering
+  std::vector<int> by_degree_;  // places in `set` by increasing degree
+  std::vector<int> set_;        // the set given to factorize (solve reads it)
 };
 
 }  // namespace invfree
