@@ -348,7 +348,7 @@ struct LinearSolver::Impl {
   std::vector<int> block_set;    // D: `changed` and its neighbours
   SubmatrixLdlt block;           // H_DD = L D L^T, when use_block
   bool use_block = false;
-  VecX block_x;
+  VecX block_x;   // S r on `block_set` (or on `changed`, the fallback)
   VecX smoother;  // omega_i / H(i, i) on `changed` (the fallback)
 
   bool factorize(const SpMat& h, LinearSolveStats& stats) {
@@ -443,41 +443,34 @@ struct LinearSolver::Impl {
     const double* v = h.valuePtr();
     const int* outer = h.outerIndexPtr();
     const int* inner = h.innerIndexPtr();
-    if (use_block) {
-      const int m = block.size();
-      block.solve(in, block_x);  // z1 = S in
-      t = in;
-      for (int a = 0; a < m; ++a) {
-        const int i = block_set[a];
-        for (int k = outer[i]; k < outer[i + 1]; ++k) t[inner[k]] -= v[k] * block_x[a];
+    // S on the block (an exact solve on D) or, as the fallback, the Jacobi smoother on C;
+    // block_x[a] = (S r)[set[a]].
+    const std::vector<int>& set = use_block ? block_set : changed;
+    const int m = static_cast<int>(set.size());
+    auto smooth = [&](const VecX& r) {
+      if (use_block) {
+        block.solve(r, block_x);
+      } else {
+        for (int a = 0; a < m; ++a) block_x[a] = smoother[set[a]] * r[set[a]];
       }
-      if (!apply_factor(t, out)) return false;
-      for (int a = 0; a < m; ++a) out[block_set[a]] += block_x[a];
-      for (int a = 0; a < m; ++a) {  // t = in - H out on D
-        const int i = block_set[a];
-        double hz = 0.0;
-        for (int k = outer[i]; k < outer[i + 1]; ++k) hz += v[k] * out[inner[k]];
-        t[i] = in[i] - hz;
-      }
-      block.solve(t, block_x);
-      for (int a = 0; a < m; ++a) out[block_set[a]] += block_x[a];
-      return true;
-    }
-    // t = in - H z1 with z1 = S in (nonzero on C only: columns of C).
+    };
+    smooth(in);  // z1 = S in; t = in - H z1 (z1 is nonzero on the set only: its columns)
     t = in;
-    for (int i : changed) {
-      const double zi = smoother[i] * in[i];
-      for (int k = outer[i]; k < outer[i + 1]; ++k) t[inner[k]] -= v[k] * zi;
+    for (int a = 0; a < m; ++a) {
+      const int i = set[a];
+      for (int k = outer[i]; k < outer[i + 1]; ++k) t[inner[k]] -= v[k] * block_x[a];
     }
     if (!apply_factor(t, out)) return false;
-    for (int i : changed) out[i] += smoother[i] * in[i];
-    // out += S (in - H out), rows of C only (H is symmetric: row i = column i).
-    for (int i : changed) {
+    for (int a = 0; a < m; ++a) out[set[a]] += block_x[a];
+    // out += S (in - H out), rows of the set only (H is symmetric: row i = column i).
+    for (int a = 0; a < m; ++a) {
+      const int i = set[a];
       double hz = 0.0;
       for (int k = outer[i]; k < outer[i + 1]; ++k) hz += v[k] * out[inner[k]];
       t[i] = in[i] - hz;
     }
-    for (int i : changed) out[i] += smoother[i] * t[i];
+    smooth(t);
+    for (int a = 0; a < m; ++a) out[set[a]] += block_x[a];
     return true;
   }
 
@@ -587,7 +580,7 @@ void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool posit
     s.block_set.reserve(n);
     const int block_size = std::max(64, n / 8);
     s.block.reserve(n, block_size, 32L * block_size);
-    s.block_x.resize(block_size);
+    s.block_x.resize(n);  // S r on the block, or on C for the fallback
   }
   s.smoother.resize(n);
 }

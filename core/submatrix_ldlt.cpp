@@ -20,6 +20,7 @@ void SubmatrixLdlt::reserve(int n, int max_size, long max_envelope) {
   mark_.assign(max_size, 0);
   placed_.assign(max_size, 0);
   by_degree_.assign(max_size, 0);
+  trial_.assign(max_size, 0);
   set_.clear();
   set_.reserve(max_size);
   m_ = 0;
@@ -47,29 +48,29 @@ void SubmatrixLdlt::order(const Eigen::SparseMatrix<double>& h, const std::vecto
   auto fewer = [&](int a, int b) {
     return degree_[a] != degree_[b] ? degree_[a] < degree_[b] : a < b;
   };
-  // Breadth-first from `start` into order_[out ..]: each node's new neighbours by increasing
+  // Breadth-first from `start` into into[out ..]: each node's new neighbours by increasing
   // degree. Returns the end and sets the start of the last level and the number of levels.
   int stamp = 0;
-  auto search = [&](int start, int out, int& last_level, int& levels) {
+  auto search = [&](int start, std::vector<int>& into, int out, int& last_level, int& levels) {
     ++stamp;
     mark_[start] = stamp;
-    order_[out] = start;
+    into[out] = start;
     int begin = out, end = out + 1, tail = out + 1;
     levels = 0;
     while (begin < end) {
       ++levels;
       last_level = begin;
       for (int q = begin; q < end; ++q) {
-        const int i = set[order_[q]];
+        const int i = set[into[q]];
         const int from = tail;
         for (int k = outer[i]; k < outer[i + 1]; ++k) {
           const int b = local_[inner[k]];
           if (b >= 0 && mark_[b] != stamp && degree_[b] <= kDenseDegree) {
             mark_[b] = stamp;
-            order_[tail++] = b;
+            into[tail++] = b;
           }
         }
-        std::sort(order_.begin() + from, order_.begin() + tail, fewer);
+        std::sort(into.begin() + from, into.begin() + tail, fewer);
       }
       begin = end;
       end = tail;
@@ -85,20 +86,17 @@ void SubmatrixLdlt::order(const Eigen::SparseMatrix<double>& h, const std::vecto
   int next = 0;
   for (int count = 0; count < sparse;) {
     while (placed_[by_degree_[next]]) ++next;
-    int start = by_degree_[next];
+    const int start = by_degree_[next];
     // A pseudo-peripheral start: the least connected node of the last level, while the
-    // search from it goes deeper.
+    // search from it goes deeper (tried in trial_, kept only if it does).
     int last = 0, levels = 0;
-    int end = search(start, count, last, levels);
+    const int end = search(start, order_, count, last, levels);
     for (int tries = 0; tries < 4; ++tries) {
       const int candidate = *std::min_element(order_.begin() + last, order_.begin() + end, fewer);
       int candidate_last = 0, candidate_levels = 0;
-      end = search(candidate, count, candidate_last, candidate_levels);
-      if (candidate_levels <= levels) {
-        end = search(start, count, last, levels);
-        break;
-      }
-      start = candidate;
+      search(candidate, trial_, count, candidate_last, candidate_levels);
+      if (candidate_levels <= levels) break;
+      std::copy(trial_.begin() + count, trial_.begin() + end, order_.begin() + count);
       last = candidate_last;
       levels = candidate_levels;
     }

@@ -53,6 +53,7 @@ class SubmatrixLdlt {
   std::vector<int> mark_;       // per place in `set`: the breadth-first search that reached it
   std::vector<char> placed_;    // per place in `set`: already in the ordering
   std::vector<int> by_degree_;  // places in `set` by increasing degree
+  std::vector<int> trial_;      // a candidate start's search (order() keeps it if deeper)
   std::vector<int> set_;        // the set given to factorize (solve reads it)
 };
 
