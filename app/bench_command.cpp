@@ -23,8 +23,8 @@
 #include "app/output_files.h"
 #include "app/plot/chart.h"
 #include "app/scene_options.h"
-#include "core/parallel.h"
-#include "core/simulation.h"
+#include "linalg/parallel.h"
+#include "simulation.h"
 
 namespace invfree {
 

@@ -10,7 +10,7 @@
 #include "app/exit_codes.h"
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
-#include "core/scene_file.h"
+#include "scene_io/scene_file.h"
 
 namespace invfree {
 

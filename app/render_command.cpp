@@ -37,7 +37,7 @@
 #include "app/render/offscreen_context.h"
 #include "app/render/renderer.h"
 #include "app/scene_options.h"
-#include "core/simulation.h"
+#include "simulation.h"
 
 namespace invfree {
 

@@ -1,6 +1,6 @@
 #include "app/scene_options.h"
 
-#include "core/scene_file.h"
+#include "scene_io/scene_file.h"
 
 namespace invfree {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace invfree {
 

@@ -12,7 +12,7 @@
 #include "app/interrupt.h"
 #include "app/output_files.h"
 #include "app/scene_options.h"
-#include "core/simulation.h"
+#include "simulation.h"
 
 namespace invfree {
 

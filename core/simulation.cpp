@@ -1,12 +1,12 @@
-#include "core/simulation.h"
+#include "simulation.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "core/initial_state.h"
-#include "core/triangle_elasticity.h"
+#include "material/triangle_elasticity.h"
+#include "scene/initial_state.h"
 
 namespace invfree {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/newton.h"
-#include "core/scene.h"
+#include "scene/scene.h"
+#include "solver/newton.h"
 
 namespace invfree {
 

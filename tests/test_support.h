@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "core/polar_svd.h"
-#include "core/types.h"
+#include "material/polar_svd.h"
+#include "types.h"
 
 namespace invfree::test {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "app/live/stats_history.h"
-#include "core/simulation.h"
+#include "simulation.h"
 
 namespace invfree::live {
 

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "core/material.h"
+#include "material/material.h"
 
 namespace invfree::live {
 

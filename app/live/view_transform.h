@@ -3,7 +3,7 @@
 // shared renderer is asked to draw, so picking a node under the cursor uses the same map.
 #pragma once
 
-#include "core/types.h"
+#include "types.h"
 
 namespace invfree::live {
 

@@ -11,8 +11,8 @@
 // fall with no ground) leaves the picture.
 #pragma once
 
-#include "core/scene.h"
-#include "core/types.h"
+#include "scene/scene.h"
+#include "types.h"
 
 namespace invfree::render {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/material.h"
+#include "material/material.h"
 
 namespace invfree::render {
 

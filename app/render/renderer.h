@@ -41,7 +41,7 @@
 
 #include "app/render/camera.h"
 #include "app/render/gl_proc.h"
-#include "core/simulation.h"
+#include "simulation.h"
 
 namespace invfree::render {
 

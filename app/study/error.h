@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "core/types.h"
+#include "types.h"
 
 namespace invfree {
 

@@ -1,6 +1,6 @@
 #include "app/study/methods.h"
 
-#include "core/scene_file.h"
+#include "scene_io/scene_file.h"
 
 namespace invfree {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace invfree {
 

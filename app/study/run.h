@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "app/study/verdict.h"
-#include "core/simulation.h"
+#include "simulation.h"
 
 namespace invfree {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "core/scene_file.h"
+#include "scene_io/scene_file.h"
 
 namespace invfree {
 

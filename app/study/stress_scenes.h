@@ -9,7 +9,7 @@
 #include <span>
 #include <string>
 
-#include "core/scene.h"
+#include "scene/scene.h"
 
 namespace invfree {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/contact.h"
+#include "potential/contact.h"
 
 namespace invfree {
 

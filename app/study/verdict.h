@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "core/simulation.h"
+#include "simulation.h"
 
 namespace invfree {
 

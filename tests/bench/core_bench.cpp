@@ -10,14 +10,14 @@
 
 #include <random>
 
-#include "core/incremental_potential.h"
-#include "core/linear_solver.h"
-#include "core/models.h"
-#include "core/parallel.h"
-#include "core/scene.h"
-#include "core/simulation.h"
-#include "core/sparse_ldlt.h"
-#include "core/triangle_elasticity.h"
+#include "linalg/linear_solver.h"
+#include "linalg/parallel.h"
+#include "linalg/sparse_ldlt.h"
+#include "material/models.h"
+#include "material/triangle_elasticity.h"
+#include "potential/incremental_potential.h"
+#include "scene/scene.h"
+#include "simulation.h"
 
 namespace invfree {
 namespace {

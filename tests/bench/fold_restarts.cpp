@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
-#include "core/simulation.h"
+#include "scene/scene.h"
+#include "simulation.h"
 
 using namespace invfree;
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <string_view>
 
-#include "core/scene.h"
-#include "core/scene_file.h"
+#include "scene/scene.h"
+#include "scene_io/scene_file.h"
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include "app/live/output_naming.h"
 #include "app/live/param_limits.h"
 #include "app/live/view_transform.h"
-#include "core/triangle_elasticity.h"
+#include "material/triangle_elasticity.h"
 
 namespace invfree::live {
 namespace {

@@ -7,8 +7,8 @@
 #include <random>
 
 #include "app/live/live_controller.h"
-#include "core/incremental_potential.h"
-#include "core/simulation.h"
+#include "potential/incremental_potential.h"
+#include "simulation.h"
 #include "tests/test_support.h"
 
 namespace invfree {

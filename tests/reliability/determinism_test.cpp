@@ -10,9 +10,9 @@
 #include <sstream>
 #include <string>
 
-#include "core/scene.h"
-#include "core/scene_file.h"
-#include "core/simulation.h"
+#include "scene/scene.h"
+#include "scene_io/scene_file.h"
+#include "simulation.h"
 #include "tests/reliability/process.h"
 
 namespace invfree {

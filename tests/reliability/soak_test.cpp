@@ -16,9 +16,9 @@
 #include <limits>
 #include <string>
 
-#include "core/incremental_potential.h"
-#include "core/scene.h"
-#include "core/simulation.h"
+#include "potential/incremental_potential.h"
+#include "scene/scene.h"
+#include "simulation.h"
 
 namespace invfree {
 namespace {

@@ -15,9 +15,9 @@
 #include "app/render/gl_api.h"
 #include "app/render/offscreen_context.h"
 #include "app/render/renderer.h"
-#include "core/scene.h"
-#include "core/scene_file.h"
-#include "core/simulation.h"
+#include "scene/scene.h"
+#include "scene_io/scene_file.h"
+#include "simulation.h"
 #include "tests/render/image_compare.h"
 
 namespace invfree {

@@ -9,7 +9,7 @@
 #include "app/render/frame_text.h"
 #include "app/render/frame_writer.h"
 #include "app/render/text_atlas.h"
-#include "core/scene.h"
+#include "scene/scene.h"
 #include "tests/render/image_compare.h"
 
 namespace invfree::render {

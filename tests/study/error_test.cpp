@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/mesh.h"
+#include "scene/mesh.h"
 
 namespace invfree {
 namespace {

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "app/study/stress_scenes.h"
-#include "core/scene_file.h"
+#include "scene_io/scene_file.h"
 
 namespace invfree {
 namespace {

@@ -10,7 +10,7 @@
 #include "app/study/methods.h"
 #include "app/study/run.h"
 #include "app/study/stress_scenes.h"
-#include "core/scene_file.h"
+#include "scene_io/scene_file.h"
 
 namespace invfree {
 namespace {

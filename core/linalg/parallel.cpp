@@ -1,0 +1,112 @@
+#include "linalg/parallel.h"
+
+#include <cstdlib>
+#include <memory>
+#include <mutex>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace invfree {
+
+namespace {
+
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
+}
+
+// About 10-30 microseconds of spinning before a worker (or the caller) sleeps.
+constexpr int kSpinIterations = 2000;
+
+int default_thread_count() {
+  if (const char* env = std::getenv("INVFREE_THREADS")) {
+    const int n = std::atoi(env);
+    if (n >= 1 && n <= 256) return n;
+  }
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw == 0 ? 1 : static_cast<int>(hw);
+}
+
+std::mutex g_pool_mutex;
+std::unique_ptr<ThreadPool> g_pool;
+
+}  // namespace
+
+ThreadPool::ThreadPool(int threads) {
+  for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { worker_loop(); });
+}
+
+ThreadPool::~ThreadPool() {
+  stop_.store(true, std::memory_order_release);
+  wake_.fetch_add(1, std::memory_order_release);
+  wake_.notify_all();
+  for (auto& w : workers_) w.join();
+}
+
+void ThreadPool::work() {
+  std::uint64_t s = state_.load(std::memory_order_acquire);
+  while (true) {
+    const std::uint32_t tasks = static_cast<std::uint32_t>(s >> 16) & 0xffff;
+    const std::uint32_t next = static_cast<std::uint32_t>(s) & 0xffff;
+    if (next >= tasks) return;
+    if (!state_.compare_exchange_weak(s, s + 1, std::memory_order_acq_rel,
+                                      std::memory_order_acquire))
+      continue;
+    // The run cannot end while this claimed task is pending, so call_/ctx_ are its own.
+    call_(ctx_, static_cast<int>(next));
+    if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == static_cast<int>(tasks))
+      done_.notify_one();
+    s = state_.load(std::memory_order_acquire);
+  }
+}
+
+void ThreadPool::worker_loop() {
+  std::uint32_t seen = 0;
+  while (true) {
+    for (int i = 0; i < kSpinIterations && wake_.load(std::memory_order_acquire) == seen; ++i)
+      cpu_relax();
+    wake_.wait(seen, std::memory_order_acquire);
+    seen = wake_.load(std::memory_order_acquire);
+    if (stop_.load(std::memory_order_acquire)) return;
+    work();
+  }
+}
+
+void ThreadPool::run_impl(int tasks, TaskFn call, void* ctx) {
+  call_ = call;
+  ctx_ = ctx;
+  done_.store(0, std::memory_order_relaxed);
+  const std::uint64_t run = (state_.load(std::memory_order_relaxed) >> 32) + 1;
+  state_.store((run << 32) | (static_cast<std::uint64_t>(tasks) << 16), std::memory_order_release);
+  wake_.fetch_add(1, std::memory_order_release);
+  wake_.notify_all();
+  work();
+  // Wait for the tasks other threads claimed (never for a worker that did not start).
+  for (int i = 0; i < kSpinIterations; ++i) {
+    if (done_.load(std::memory_order_acquire) == tasks) return;
+    cpu_relax();
+  }
+  for (int d = done_.load(std::memory_order_acquire); d != tasks;
+       d = done_.load(std::memory_order_acquire))
+    done_.wait(d, std::memory_order_acquire);
+}
+
+ThreadPool& thread_pool() {
+  std::lock_guard<std::mutex> lock(g_pool_mutex);
+  if (!g_pool) g_pool = std::make_unique<ThreadPool>(default_thread_count());
+  return *g_pool;
+}
+
+int thread_count() {
+  return thread_pool().size();
+}
+
+void set_thread_count(int n) {
+  std::lock_guard<std::mutex> lock(g_pool_mutex);
+  g_pool = std::make_unique<ThreadPool>(n <= 0 ? default_thread_count() : n);
+}
+
+}  // namespace invfree

@@ -1,0 +1,41 @@
+// A symmetric sparse matrix (both triangles stored, column-major CSC) whose pattern is
+// fixed for a mesh, with precomputed positions ("slots") into its value array so that
+// assembly is a scatter with no search and no allocation. Inputs: the mesh and whether a
+// ceiling degree of freedom follows the 2N node coordinates. Pattern: every node pair
+// that shares a triangle, the diagonal, and the ceiling's coupling to every node's y.
+// It also carries the parallel assembly plan: triangles in chunks of consecutive indices,
+// the chunks grouped into colours so that no two chunks of one colour share a node. The
+// chunks of a colour scatter concurrently without locks, and every slot receives its
+// contributions in an order fixed by the mesh alone (colour, chunk, triangle), so the sum
+// is bit-identical whatever the number of threads.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "scene/mesh.h"
+
+namespace invfree {
+
+struct SparseHessian {
+  Eigen::SparseMatrix<double> matrix;
+  std::vector<int> triangle_slots;  // 36 per triangle, row-major over the local 6x6
+  std::vector<int> diagonal_slots;  // one per degree of freedom
+  std::vector<int> ceiling_slots;   // per node: (y_i, c) then (c, y_i)
+  int ceiling_dof = -1;             // -1 when the scene has no ceiling
+  // Assembly plan. Colour c owns chunks chunk_order[colour_begin[c] .. colour_begin[c+1]);
+  // chunk k holds triangles [k * chunk_size, min((k + 1) * chunk_size, triangle count)).
+  int chunk_size = 128;
+  std::vector<int> colour_begin;
+  std::vector<int> chunk_order;
+  int colour_count() const { return static_cast<int>(colour_begin.size()) - 1; }
+
+  void set_zero() { std::fill_n(matrix.valuePtr(), matrix.nonZeros(), 0.0); }
+  double* values() { return matrix.valuePtr(); }
+  // Makes the ceiling row and column those of an eliminated (fixed) unknown.
+  void eliminate_ceiling();
+};
+
+SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling);
+
+}  // namespace invfree

@@ -1,0 +1,75 @@
+#include "scene/initial_state.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+
+namespace invfree {
+
+namespace {
+// SplitMix64 (Steele, Lea, Flood 2014): tiny, fast and identical everywhere, unlike the
+// standard library's distributions.
+double next_uniform(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53 * 2.0 - 1.0;  // [-1, 1)
+}
+}  // namespace
+
+VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
+  VecX x(2 * mesh.node_count());
+  for (int i = 0; i < mesh.node_count(); ++i) x.segment<2>(2 * i) = mesh.rest[i];
+  if (scene.jitter > 0.0) {
+    std::uint64_t state = scene.seed;
+    const double amplitude = scene.jitter * scene.side / scene.n_seg;
+    for (int k = 0; k < x.size(); ++k) x[k] += amplitude * next_uniform(state);
+  }
+  return x;
+}
+
+std::string check_initial_state(const SceneDef& s) {
+  const Mesh mesh = square_mesh(s.side, s.n_seg);
+  const VecX x = initial_positions(s, mesh);
+  if (!model_allows_inversion(s.model)) {
+    for (const auto& tri : mesh.triangles) {
+      Mat2 ds;
+      ds.col(0) = x.segment<2>(2 * tri[1]) - x.segment<2>(2 * tri[0]);
+      ds.col(1) = x.segment<2>(2 * tri[2]) - x.segment<2>(2 * tri[0]);
+      if (!(ds.determinant() > 0.0))
+        return "mesh.jitter: the initial mesh has an inverted triangle, which the " +
+               std::string(model_name(s.model)) + " model cannot start from";
+    }
+  }
+  for (int i = 0; i < mesh.node_count(); ++i) {
+    const double y = x[2 * i + 1];
+    if (s.has_ground && !(y > s.ground_y))
+      return "ground.y: the square starts on or through the ground";
+    if (s.has_ceiling && !(y < s.ceiling_y))
+      return "ceiling.y: the square starts on or through the ceiling";
+  }
+  return "";
+}
+
+double estimated_memory_bytes(int n_seg) {
+  const double nodes = (double(n_seg) + 1.0) * (double(n_seg) + 1.0);
+  return nodes * 1024.0 * (1.0 + 0.25 * std::log2(nodes));
+}
+
+std::string check_mesh_fits_in_memory(int n_seg) {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page_size <= 0) return "";  // unknown: let the allocator decide
+  const double physical = double(pages) * double(page_size);
+  const double needed = estimated_memory_bytes(n_seg);
+  if (needed <= 0.8 * physical) return "";
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "%d would need about %.1f GiB, more than this machine's %.1f GiB of memory allows",
+                n_seg, needed / double(1 << 30), physical / double(1 << 30));
+  return buf;
+}
+
+}  // namespace invfree

@@ -1,0 +1,86 @@
+// A scene: a plain definition struct with defaults (the reference demo, `compress`), and
+// the table of built-in scenes shared by the app, the tests and the benchmarks. A term
+// whose `has_*` flag is false is never evaluated (a missing TOML section switches it off).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "linalg/linear_solver_kind.h"
+#include "material/material.h"
+#include "scene/mesh.h"
+
+namespace invfree {
+
+enum class Integrator { ImplicitEuler, SymplecticEuler };
+const char* integrator_name(Integrator i);
+std::optional<Integrator> integrator_from_name(std::string_view name);
+
+struct SceneDef {
+  std::string name = "compress";
+  // [mesh]
+  double side = 1.0;
+  int n_seg = 4;
+  double density = 1000.0;
+  MassMode mass = MassMode::Uniform;
+  double jitter = 0.0;  // random initial node displacement, as a fraction of the edge length
+  std::uint64_t seed = 1;
+  // [material]
+  Model model = Model::NeoHookean;
+  Lame lame = lame_from_young_poisson(1e5, 0.4);
+  // [time]
+  double h = 0.01;
+  double tol = 1e-2;  // Newton stops when |p|_inf / h < tol (m/s)
+  int max_newton = 100;
+  // [solver]
+  HessianProjection projection = HessianProjection::Diagonal;
+  bool inversion_filter = true;
+  Integrator integrator = Integrator::ImplicitEuler;
+  LinearSolverKind linear_solver = LinearSolverKind::Auto;  // see core/linear_solver_kind.h
+  bool step_expansion = true;                               // Newton's safeguards, core/newton.h
+  bool friction_crossing_stop = true;
+  // [initial]
+  Vec2 initial_velocity = Vec2::Zero();
+  // [gravity]
+  bool has_gravity = true;
+  Vec2 gravity = Vec2(0.0, -9.81);
+  // [ground]
+  bool has_ground = true;
+  double ground_y = -1.0;
+  double friction = 0.11;
+  // [ceiling]
+  bool has_ceiling = true;
+  double ceiling_y = 0.6;
+  double ceiling_velocity = -0.5;
+  double ceiling_stop = -0.7;  // stops once its start-of-step height is at or below this
+  // [barrier]
+  double dhat = 0.01;
+  double kappa = 1e5;
+
+  bool operator==(const SceneDef&) const = default;
+  double contact_area() const { return side / n_seg; }
+  bool has_contact() const { return has_ground || has_ceiling; }
+};
+
+struct SceneEntry {
+  const char* name;
+  const char* description;
+  SceneDef (*make)();
+};
+
+std::span<const SceneEntry> builtin_scenes();
+std::optional<SceneDef> find_builtin_scene(std::string_view name);
+
+// The largest n_seg accepted anywhere: keeps every node, DOF and sparse-matrix index well
+// inside int. Smaller meshes can still be refused by check_mesh_fits_in_memory.
+constexpr int kMaxSegments = 4096;
+
+// Checks every value's range and the initial state (no inverted triangle for a model that
+// needs det F > 0, no node on or through a plane). Returns "" when valid, otherwise
+// "key: reason" naming the offending scene key.
+std::string validate_scene(const SceneDef& scene);
+
+}  // namespace invfree

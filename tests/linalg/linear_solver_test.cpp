@@ -1,0 +1,191 @@
+// The Newton linear solve: every backend solves the system; PCG's inexact direction
+// never makes Newton stop where the exact direction would not (linear_solver.h's error
+// bound), is always a descent direction, and reuses its factorisation; a run with each
+// solver keeps every invariant.
+#include "linalg/linear_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCholesky>
+
+#include "potential/incremental_potential.h"
+#include "simulation.h"
+
+namespace invfree {
+namespace {
+
+// The Newton system of a compressed `compress` state (ground and ceiling contacts, friction).
+struct System {
+  Simulation sim;
+  Eigen::SparseMatrix<double> H;
+  VecX g, b;
+  double lambda_min = 0.0;
+  explicit System(int n_seg, int steps = 150, double perturb = 0.0) {
+    SceneDef s = *find_builtin_scene("compress");
+    s.n_seg = n_seg;
+    s.linear_solver = LinearSolverKind::Ldlt;
+    sim = make_simulation(s);
+    for (int k = 0; k < steps; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);
+    VecX z(sim.problem.dof_count());
+    z.head(sim.x.size()) = sim.x + perturb * s.h * sim.v;  // part of a step ahead: not the minimum
+    z[sim.x.size()] = sim.ceiling_y;
+    ip_gradient_hessian(sim.problem, z, g, sim.workspace.hessian);
+    H = sim.workspace.hessian.matrix;
+    b = -g;
+    lambda_min = sim.workspace.min_node_mass;
+    if (sim.problem.ceiling_on)
+      lambda_min =
+          std::min(lambda_min, sim.problem.ceiling_fixed ? 1.0 : sim.problem.ceiling_stiffness);
+  }
+};
+
+// Reference solution by Eigen's own sparse LDL^T (independent of core/linear_solver.cpp).
+VecX dense_solve(const Eigen::SparseMatrix<double>& H, const VecX& b) {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
+  return ldlt.solve(b);
+}
+
+TEST(LinearSolver, EveryBackendSolvesTheNewtonSystem) {
+  const System sys(12);
+  const VecX exact = dense_solve(sys.H, sys.b);
+  for (LinearSolverKind kind : {LinearSolverKind::Ldlt, LinearSolverKind::Cholmod,
+                                LinearSolverKind::Pcg, LinearSolverKind::Auto}) {
+    LinearSolver solver;
+    solver.setup(sys.H, kind, true);
+    LinearSolveStats stats;
+    SolveRequest request;
+    request.forcing = 1e-13;  // no stopping threshold: as exact as a direct solve
+    VecX x;
+    ASSERT_TRUE(solver.solve(sys.H, sys.b, x, request, stats)) << linear_solver_name(kind);
+    EXPECT_LT((x - exact).norm(), 1e-9 * exact.norm()) << solver.backend_name();
+    EXPECT_GE(stats.factorizations, 1);
+  }
+}
+
+TEST(LinearSolver, BackendNamesFollowTheRequestAndTheProjection) {
+  const System sys(6, 1);
+  LinearSolver s;
+  s.setup(sys.H, LinearSolverKind::Auto, true);
+  EXPECT_STREQ(s.backend_name(), "pcg+ldlt");
+  s.setup(sys.H, LinearSolverKind::Auto, false);  // exact Hessian, maybe indefinite: direct LDL^T
+  EXPECT_STREQ(s.backend_name(), "ldlt");
+  s.setup(sys.H, LinearSolverKind::Cholmod, true);
+  EXPECT_STREQ(s.backend_name(), "cholmod");
+}
+
+// Newton stops when |p|_inf < threshold. With a reused (stale) factorisation PCG is
+// inexact, yet its stop decision must be the exact solution's whenever it says "stop".
+TEST(Pcg, NeverStopsNewtonWhereTheExactDirectionWouldNot) {
+  const System old_sys(32, 128), sys(32, 130, 0.5);
+  const VecX exact = dense_solve(sys.H, sys.b);
+  const double p_inf = exact.lpNorm<Eigen::Infinity>();
+  int stops = 0, goes = 0;
+  for (double ratio : {0.5, 0.9, 0.99, 0.999, 1.001, 1.01, 1.1, 2.0, 10.0}) {
+    LinearSolver solver;
+    solver.setup(old_sys.H, LinearSolverKind::Pcg, true);
+    LinearSolveStats stats;
+    SolveRequest warm;
+    VecX x;
+    ASSERT_TRUE(solver.solve(old_sys.H, old_sys.b, x, warm, stats));  // factorises the old matrix
+    SolveRequest request;
+    request.threshold = ratio * p_inf;
+    request.lambda_min = sys.lambda_min;
+    request.forcing = 0.3;  // a loose direction whenever Newton goes on
+    ASSERT_TRUE(solver.solve(sys.H, sys.b, x, request, stats));
+    EXPECT_EQ(stats.factorizations, 1) << "the stale factor should have been reused";
+    const bool pcg_stops = x.lpNorm<Eigen::Infinity>() < request.threshold;
+    if (pcg_stops) {
+      ++stops;
+      EXPECT_LT(p_inf, request.threshold)
+          << "ratio " << ratio << ": PCG stopped Newton, the exact p would not";
+    } else {
+      ++goes;
+    }
+    // Every direction descends: g.p = -b.p < 0.
+    EXPECT_GT(sys.b.dot(x), 0.0) << "ratio " << ratio;
+  }
+  EXPECT_GT(stops, 0);
+  EXPECT_GT(goes, 0);
+}
+
+TEST(Pcg, ReusesOneFactorisationAcrossNearbySystems) {
+  // The Newton systems at the states of consecutive steps of one run (compression phase).
+  System sys(32, 100);
+  LinearSolver solver;
+  solver.setup(sys.H, LinearSolverKind::Pcg, true);
+  LinearSolveStats stats;
+  const int solves = 10;
+  for (int k = 0; k < solves; ++k) {
+    ASSERT_EQ(step(sys.sim).status, StepStatus::Ok);
+    VecX z(sys.sim.problem.dof_count()), g;
+    z.head(sys.sim.x.size()) = sys.sim.x;
+    z[sys.sim.x.size()] = sys.sim.ceiling_y;
+    ip_gradient_hessian(sys.sim.problem, z, g, sys.sim.workspace.hessian);
+    const Eigen::SparseMatrix<double>& H = sys.sim.workspace.hessian.matrix;
+    const VecX b = -g;
+    SolveRequest request;
+    request.forcing = 1e-2;  // Newton's forcing term (relative model decrease of a CG step)
+    VecX x;
+    ASSERT_TRUE(solver.solve(H, b, x, request, stats));
+    // An inexact Newton direction: close to the exact one in H's energy norm.
+    const VecX exact = dense_solve(H, b);
+    const VecX e = x - exact;
+    EXPECT_LE(std::sqrt(e.dot(H * e)), 0.2 * std::sqrt(exact.dot(H * exact))) << "step " << k;
+    EXPECT_GT(b.dot(x), 0.0) << "step " << k;
+  }
+  EXPECT_LE(stats.factorizations, 3) << "the factorisation should be reused across steps";
+  EXPECT_GT(stats.pcg_iterations, solves);
+}
+
+double max_speed(const Simulation& sim) {
+  double v = 0;
+  for (int i = 0; i < sim.mesh.node_count(); ++i) v = std::max(v, sim.v.segment<2>(2 * i).norm());
+  return v;
+}
+
+TEST(Simulation, EveryLinearSolverKeepsTheInvariantsAndComesToRest) {
+  for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Ldlt,
+                                LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
+    SceneDef s = *find_builtin_scene("compress");
+    s.n_seg = 10;
+    s.linear_solver = kind;
+    Simulation sim = make_simulation(s);
+    for (int k = 0; k < 600; ++k) {
+      const StepReport r = step(sim);
+      ASSERT_EQ(r.status, StepStatus::Ok)
+          << linear_solver_name(kind) << " step " << k << ": " << r.message;
+      ASSERT_LT(r.residual, s.tol);
+      for (const auto& t : sim.mesh.triangles) {
+        const Vec2 a = sim.x.segment<2>(2 * t[1]) - sim.x.segment<2>(2 * t[0]);
+        const Vec2 c = sim.x.segment<2>(2 * t[2]) - sim.x.segment<2>(2 * t[0]);
+        ASSERT_GT(a.x() * c.y() - a.y() * c.x(), 0.0) << linear_solver_name(kind) << " step " << k;
+      }
+      for (int i = 0; i < sim.mesh.node_count(); ++i) {
+        ASSERT_GT(sim.x[2 * i + 1], s.ground_y);
+        ASSERT_LT(sim.x[2 * i + 1], sim.ceiling_y);
+      }
+    }
+    EXPECT_LT(max_speed(sim), 1e-2) << linear_solver_name(kind);
+    EXPECT_NEAR(sim.ceiling_y, s.ceiling_stop, 0.01) << linear_solver_name(kind);
+  }
+}
+
+TEST(Simulation, ExactHessianRunsWithEverySolverThatAcceptsIt) {
+  // Projection "none" may give an indefinite Hessian: auto uses LDL^T; a forced PCG falls
+  // back to its factorisation when CG meets negative curvature.
+  for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Pcg}) {
+    SceneDef s = *find_builtin_scene("drop");
+    s.projection = HessianProjection::None;
+    s.n_seg = 6;
+    s.linear_solver = kind;
+    Simulation sim = make_simulation(s);
+    for (int k = 0; k < 150; ++k) {
+      const StepReport r = step(sim);
+      ASSERT_EQ(r.status, StepStatus::Ok)
+          << linear_solver_name(kind) << " step " << k << ": " << r.message;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace invfree

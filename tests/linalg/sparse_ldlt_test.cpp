@@ -1,0 +1,188 @@
+// The project's LDL^T (core/sparse_ldlt.h): it solves SPD and indefinite systems to the
+// accuracy of an independent factorisation, refuses what it must, cuts the elimination
+// tree into independent parts that really are independent, and gives the same bits for
+// any number of threads.
+#include "linalg/sparse_ldlt.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <random>
+
+#include "linalg/linear_solver.h"
+#include "linalg/parallel.h"
+#include "linalg/sparse_hessian.h"
+#include "scene/mesh.h"
+#include "tests/linalg/mesh_matrix.h"
+
+namespace invfree {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+std::vector<int> amd_order(const SpMat& a) {
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;
+  Eigen::AMDOrdering<int> amd;
+  amd(a, perm);
+  return std::vector<int>(perm.indices().data(), perm.indices().data() + a.rows());
+}
+
+TEST(SparseLdlt, SolvesLikeAnIndependentFactorisation) {
+  for (int n_seg : {1, 3, 12, 40}) {
+    const SpMat a = mesh_matrix(n_seg, 1.0, 7u + n_seg);
+    const VecX b = VecX::LinSpaced(a.rows(), -1.0, 2.0);
+    const VecX exact = Eigen::SimplicialLDLT<SpMat>(a).solve(b);
+    for (int bins : {1, 2, 3}) {
+      SparseLdlt ldlt;
+      ldlt.analyze(a, amd_order(a), bins);
+      ASSERT_TRUE(ldlt.factorize(a)) << n_seg << " " << bins;
+      VecX x(a.rows());
+      ldlt.solve(b, x);
+      EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm()) << "n_seg " << n_seg << ", bins " << bins;
+      EXPECT_LT((a * x - b).norm(), 1e-12 * b.norm());
+      if (bins == 1) {
+        EXPECT_EQ(ldlt.serial_fraction(), 0.0);
+      }
+      EXPECT_LT(ldlt.serial_fraction(), 0.5);
+    }
+  }
+}
+
+TEST(SparseLdlt, SolvesSupernodesOfEveryWidth) {
+  // The forward solve works on blocks of up to four columns of a supernode: a dense
+  // matrix is one supernode as wide as it is (every block width and remainder), and the
+  // solver's own nested-dissection ordering of a larger mesh has wide separators above
+  // sparse rows.
+  std::mt19937 rng(11u);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int size = 1; size <= 11; ++size) {
+    Eigen::MatrixXd m(size, size);
+    for (int i = 0; i < size; ++i)
+      for (int j = 0; j <= i; ++j) m(i, j) = m(j, i) = u(rng);
+    m += (size + 1.0) * Eigen::MatrixXd::Identity(size, size);
+    const SpMat a = m.sparseView();
+    const VecX b = VecX::LinSpaced(size, -1.0, 2.0);
+    const VecX exact = m.ldlt().solve(b);
+    std::vector<int> order(size);
+    std::iota(order.begin(), order.end(), 0);
+    SparseLdlt ldlt;
+    ldlt.analyze(a, order, 2);
+    ASSERT_TRUE(ldlt.factorize(a));
+    VecX x(size);
+    ldlt.solve(b, x);
+    EXPECT_LT((x - exact).norm(), 1e-13 * exact.norm()) << "dense, size " << size;
+  }
+  const SpMat a = mesh_matrix(52, 1.0, 12u);
+  ASSERT_GE(a.rows(), kNestedDissectionMinUnknowns);
+  const VecX b = VecX::LinSpaced(a.rows(), -1.0, 2.0);
+  const VecX exact = Eigen::SimplicialLDLT<SpMat>(a).solve(b);
+  SparseLdlt ldlt;
+  analyze_like_the_solver(a, ldlt);
+  ASSERT_TRUE(ldlt.factorize(a));
+  VecX x(a.rows());
+  ldlt.solve(b, x);
+  EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm());
+  EXPECT_LT((a * x - b).norm(), 1e-12 * b.norm());
+}
+
+TEST(SparseLdlt, RefactorisesNewValuesOnTheSamePattern) {
+  // A second factorisation must not see anything of the first (row marks, counts).
+  const SpMat a = mesh_matrix(24, 1.0, 1u), c = mesh_matrix(24, 3.0, 2u);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  const VecX b = VecX::Ones(a.rows());
+  VecX x(a.rows());
+  for (const SpMat* m : {&a, &c, &a}) {
+    ASSERT_TRUE(ldlt.factorize(*m));
+    ldlt.solve(b, x);
+    EXPECT_LT((*m * x - b).norm(), 1e-12 * b.norm());
+  }
+}
+
+TEST(SparseLdlt, IndefiniteOnlyWhenAllowed) {
+  const SpMat a = mesh_matrix(16, -1.0, 3u);
+  const VecX b = VecX::LinSpaced(a.rows(), 1.0, -1.0);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  EXPECT_FALSE(ldlt.factorize(a, true));  // a negative pivot: not positive definite
+  ASSERT_TRUE(ldlt.factorize(a, false));
+  VecX x(a.rows());
+  ldlt.solve(b, x);
+  EXPECT_LT((a * x - b).norm(), 1e-10 * b.norm());
+}
+
+TEST(SparseLdlt, RefusesNonFiniteValues) {
+  SpMat a = mesh_matrix(16, 1.0, 4u);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  a.coeffRef(5, 5) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(ldlt.factorize(a, true));
+  EXPECT_FALSE(ldlt.factorize(a, false));
+}
+
+TEST(SparseLdlt, TwoBinsRunConcurrentlyOnMostOfTheWork) {
+  // The point of the split: on a mesh the top of the tree is a small part of the solve.
+  const SpMat a = mesh_matrix(64, 1.0, 5u);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  EXPECT_GT(ldlt.serial_fraction(), 0.0);
+  EXPECT_LT(ldlt.serial_fraction(), 0.2);
+}
+
+TEST(SparseLdlt, SolvesReadOneRowListPerSupernode) {
+  // Two unknowns per node: nearly every column shares its rows with the next one, so the
+  // solves read well under half as many indices as L has entries (the accuracy of what
+  // they compute is checked above).
+  const SpMat a = mesh_matrix(40, 1.0, 8u);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  EXPECT_GT(ldlt.solve_row_indices(), 0);
+  EXPECT_LT(ldlt.solve_row_indices(), ldlt.factor_nonzeros() / 2);
+}
+
+TEST(SparseLdlt, FloatCopySolvesToSinglePrecisionAndOnlyWhenKept) {
+  const SpMat a = mesh_matrix(24, 1.0, 9u);
+  const VecX b = VecX::LinSpaced(a.rows(), -1.0, 1.0);
+  SparseLdlt ldlt;
+  ldlt.analyze(a, amd_order(a), 2);
+  ASSERT_TRUE(ldlt.factorize(a));
+  VecX exact(a.rows()), x(a.rows());
+  ldlt.solve(b, exact);
+  ldlt.solve_float(b, x);  // no copy kept: the double solve, bit for bit
+  EXPECT_EQ(0, std::memcmp(x.data(), exact.data(), sizeof(double) * x.size()));
+  ldlt.keep_float_copy(true);
+  ASSERT_TRUE(ldlt.factorize(a));  // the copy is made by the factorisation
+  ldlt.solve_float(b, x);
+  const double error = (x - exact).norm() / exact.norm();
+  EXPECT_GT(error, 0.0);   // it really read the rounded values
+  EXPECT_LT(error, 1e-5);  // float's 6e-8 per entry, times this matrix's small condition
+  ldlt.solve(b, x);        // the double values are still there
+  EXPECT_EQ(0, std::memcmp(x.data(), exact.data(), sizeof(double) * x.size()));
+}
+
+TEST(SparseLdlt, BitIdenticalForAnyThreadCount) {
+  const SpMat a = mesh_matrix(40, 1.0, 6u);
+  const VecX b = VecX::LinSpaced(a.rows(), -3.0, 1.0);
+  std::vector<VecX> results;
+  for (int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    SparseLdlt ldlt;
+    ldlt.analyze(a, amd_order(a), 2);
+    ASSERT_TRUE(ldlt.factorize(a));
+    VecX x(a.rows());
+    for (int repeat = 0; repeat < 3; ++repeat) ldlt.solve(b, x);
+    results.push_back(x);
+  }
+  set_thread_count(0);
+  for (std::size_t k = 1; k < results.size(); ++k)
+    EXPECT_EQ(0,
+              std::memcmp(results[0].data(), results[k].data(), sizeof(double) * results[0].size()))
+        << "threads differ";
+}
+
+}  // namespace
+}  // namespace invfree
