@@ -201,11 +201,13 @@ struct LdltBackend {
 };
 
 // ---- BLAS threads ------------------------------------------------------------------------
-// OpenBLAS threads its level-2 and level-3 calls. That pays in a supernodal factorisation
-// (large dense blocks) but not in the triangular solves PCG repeats: there every call
-// wakes the BLAS threads for a small matrix-vector product, which measured 4x slower per
-// CG iteration at n_seg 128 than one thread. The solves run on one BLAS thread and the
-// factorisations on all of them. Looked up at run time: with another BLAS this is a no-op.
+// CHOLMOD's BLAS calls run on one thread. OpenBLAS splits its level-3 calls and its
+// parallel dense Cholesky by the number of BLAS threads, so with more than one the
+// rounding, and the trajectory, would depend on the thread count (INVFREE_THREADS); on one
+// thread the cholmod backend is bit-identical for any INVFREE_THREADS, like the others.
+// One thread also suits the triangular solves PCG repeats, where waking BLAS threads for
+// a small matrix-vector product is slower than doing it. Looked up at run time: with
+// another BLAS this is a no-op and that library's own threading applies.
 using BlasThreadsFn = void (*)(int);
 BlasThreadsFn blas_set_threads() {
   static const BlasThreadsFn fn =
@@ -275,7 +277,7 @@ struct CholmodBackend {
 
   bool factorize(const SpMat& a) {
     PoolScope scope(pool);
-    set_blas_threads(thread_count());
+    set_blas_threads(1);
     cholmod_sparse s = cholmod_view(a);
     cholmod_factorize(&s, factor, &common);
     return common.status == CHOLMOD_OK && factor->minor == factor->n;
