@@ -100,7 +100,7 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
   for (int k = 0; k < steps; ++k) {
     if (interrupted()) {
       *error = "interrupted at n_seg " + std::to_string(n_seg);
-      *code = exit_code::kInterrupted;
+      *code = interrupted_exit_code();
       return false;
     }
     const StepReport r = step(sim);
@@ -268,7 +268,7 @@ int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_m
     BenchRow row;
     if (!run_size(scene, mid, steps, row, error, code)) return -1;
     std::printf("  n_seg %4d: median %.3f ms/step\n", mid, row.median_ms);
-    std::fflush(stdout);
+    flush_standard_output();
     (row.median_ms <= budget_ms ? lo : hi) = mid;
   }
   return lo;
@@ -286,10 +286,10 @@ int run_bench(const BenchOptions& opt) {
     if (auto e = validate_scene(s); !e.empty())
       return fail(exit_code::kBadInput, "n_seg " + std::to_string(n) + ": " + e);
   }
-  if (auto e = prepare_output_directory(opt.out_dir, false, false); !e.empty())
-    return fail(exit_code::kOutputFailed, e);
+  for (const char* name : {"/bench.csv", "/bench.png"})
+    if (auto e = check_output_file(opt.out_dir + name, opt.scene.input_files()))
+      return fail(e.exit_code, e.message);
   if (opt.threads > 0) set_thread_count(opt.threads);
-  install_interrupt_handler();
 
   std::printf("%-6s %8s %10s %6s %10s %10s %7s %6s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
               "triangles", "steps", "median_ms", "mean_ms", "newton", "worst", "assembly", "factor",
@@ -311,7 +311,7 @@ int run_bench(const BenchOptions& opt) {
                 row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms,
                 row.newton, row.newton_worst, row.assembly, row.factor, row.solve, row.line_search,
                 row.pcg, row.solver.c_str(), speedup.c_str());
-    std::fflush(stdout);
+    flush_standard_output();
     if (!ok) break;
   }
   // Whatever completed is written, also after a failure or Ctrl-C.
@@ -377,7 +377,7 @@ void register_bench_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 256));
   cmd->add_option("--fps", opt->fps,
                   "then find the largest n_seg whose median step fits in one frame at this rate")
-      ->check(CLI::Range(1.0, 10000.0));
+      ->check(finite_range(1.0, 10000.0));
   cmd->callback([opt, &exit_code] { exit_code = run_bench(*opt); });
 }
 

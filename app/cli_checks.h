@@ -1,9 +1,13 @@
 // Command-line checks shared by the commands. A path option given an empty value
 // (`--out ""`) is bad input, reported by the parser as one line with exit code 2, not
-// an output that could not be written (4) or an option silently ignored.
+// an output that could not be written (4) or an option silently ignored. A number
+// option must be finite and in its range: CLI::Range alone lets NaN through (every
+// comparison with NaN is false), so `--fps nan` would pass it.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdlib>
 #include <string>
 
 namespace invfree {
@@ -14,6 +18,21 @@ inline CLI::Validator non_empty_path() {
         return value.empty() ? std::string("empty path") : std::string();
       },
       "");
+}
+
+// A floating-point value in [lo, hi]; NaN and infinities are refused.
+inline CLI::Validator finite_range(double lo, double hi) {
+  const std::string range =
+      "[" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, range](const std::string& value) {
+        char* end = nullptr;
+        const double v = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0') return "expected a number, got " + value;
+        if (!std::isfinite(v) || v < lo || v > hi) return "value " + value + " not in " + range;
+        return std::string();
+      },
+      "FLOAT in " + range);
 }
 
 }  // namespace invfree

@@ -8,8 +8,10 @@
 #include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/interrupt.h"
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
+#include "app/output_files.h"
 #include "scene_io/scene_file.h"
 
 namespace invfree {
@@ -76,9 +78,23 @@ int run_live_command(LiveCommandOptions& opt) {
   lo.width = w;
   lo.height = h;
   if (int code = build_scenes(opt, &lo); code != exit_code::kOk) return code;
+  if (!lo.screenshot_file.empty()) {
+    std::vector<std::string> inputs = opt.scene_files;
+    inputs.push_back(opt.scene);
+    if (auto e = check_output_file(lo.screenshot_file, inputs)) {
+      std::fprintf(stderr, "invfree: %s\n", e.message.c_str());
+      return e.exit_code;
+    }
+  }
   // Scripted runs draw as fast as they can: no waiting for the screen's refresh.
   if (lo.frames > 0 || lo.bench) lo.vsync = false;
-  return live::run_live(lo);
+  lo.stop = [] { return interrupted(); };
+  const int code = live::run_live(lo);
+  if (code == exit_code::kOk && interrupted()) {
+    std::fprintf(stderr, "invfree: live: interrupted; recordings and screenshots are complete\n");
+    return interrupted_exit_code();
+  }
+  return code;
 }
 
 }  // namespace

@@ -1,22 +1,51 @@
 // invfree: the command-line entry point. Each command lives in its own file and
-// registers itself in commands.h.
+// registers itself in commands.h. Around every command: the signal handlers first
+// (app/interrupt.h), the INVFREE_THREADS check, and after it the check that standard
+// output (the summary line) was written.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <new>
 #include <string>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/interrupt.h"
+#include "app/output_files.h"
+
+namespace {
+
+// INVFREE_THREADS (the worker threads, core/linalg/parallel.h) must be a whole number
+// from 1 to 256 when set and not empty; "" or a one-line error.
+std::string check_thread_variable() {
+  const char* value = std::getenv("INVFREE_THREADS");
+  if (value == nullptr || *value == '\0') return "";
+  const std::string text = value;
+  const bool digits = text.size() <= 3 && text.find_first_not_of("0123456789") == std::string::npos;
+  if (digits && std::atoi(value) >= 1 && std::atoi(value) <= 256) return "";
+  std::string shown = text.substr(0, 40);
+  for (char& c : shown)
+    if (c < ' ' || c == 127) c = '?';
+  return "INVFREE_THREADS=\"" + shown + (text.size() > 40 ? "...\"" : "\"") +
+         ": expected a whole number from 1 to 256 (or unset it to use every core)";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
+  invfree::install_interrupt_handlers();
   CLI::App app{
       "invfree: inversion-free neo-Hookean elastodynamics of a soft square (lecture 9, "
       "\"Stress and Its Derivative\").\n"
       "Exit codes: 0 ok, 2 bad input (command line, scene file, --set), 3 a step failed "
       "(Newton cap, non-finite values, broken invariant), 4 an output could not be written, "
-      "130 interrupted."};
+      "129 hang-up (SIGHUP), 130 interrupted (Ctrl-C, SIGTERM); outputs: docs/outputs.md."};
   app.require_subcommand(0, 1);  // none: the live window (app/live_command.cpp)
   app.set_help_all_flag("--help-all", "show help for every command");
+  // After parsing (so --help still works), before any command runs.
+  app.parse_complete_callback([] {
+    if (const std::string e = check_thread_variable(); !e.empty()) throw CLI::ValidationError(e);
+  });
   int exit_code = invfree::exit_code::kOk;
   invfree::register_simulate_command(app, exit_code);
   invfree::register_bench_command(app, exit_code);
@@ -25,8 +54,8 @@ int main(int argc, char** argv) {
   invfree::register_stability_command(app, exit_code);
   invfree::register_live_command(app, exit_code);
   try {
-    app.parse(argc, argv);
-    if (app.get_subcommands().empty()) return invfree::run_default_command();
+    app.parse(argc, argv);  // runs the command
+    if (app.get_subcommands().empty()) exit_code = invfree::run_default_command();
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -43,6 +72,11 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "invfree: internal error: %s\n", e.what());
     return invfree::exit_code::kRunFailed;
+  }
+  const std::string stdout_error = invfree::standard_output_error();
+  if (!stdout_error.empty() && exit_code == invfree::exit_code::kOk) {
+    std::fprintf(stderr, "invfree: %s\n", stdout_error.c_str());
+    return invfree::exit_code::kOutputFailed;
   }
   return exit_code;
 }

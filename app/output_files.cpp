@@ -1,14 +1,18 @@
 #include "app/output_files.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+
+#include "app/exit_codes.h"
 
 namespace invfree {
 
@@ -122,45 +126,156 @@ std::string AtomicFileWriter::commit() {
   return "";
 }
 
-std::string prepare_output_directory(const std::string& dir, bool must_be_empty, bool force,
-                                     bool* refused_non_empty) {
-  namespace fs = std::filesystem;
-  if (refused_non_empty) *refused_non_empty = false;
-  if (dir.empty()) return "output directory: empty path";
-  std::error_code ec;
-  const fs::file_status st = fs::status(dir, ec);
-  if (fs::exists(st) && !fs::is_directory(st)) return dir + ": exists and is not a directory";
-  if (!fs::exists(st)) {
-    fs::create_directories(dir, ec);
-    if (ec) return dir + ": cannot create directory: " + ec.message();
-  }
-  if (must_be_empty && !force) {
-    const bool empty = fs::is_empty(dir, ec);
-    if (ec) return dir + ": cannot list directory: " + ec.message();
-    if (!empty) {
-      if (refused_non_empty) *refused_non_empty = true;
-      return dir + ": directory is not empty (use --force to write into it anyway)";
-    }
-  }
-  return probe_directory(dir);
+namespace {
+
+OutputError bad_input(const std::string& message) {
+  return {exit_code::kBadInput, message};
+}
+OutputError cannot_write(const std::string& message) {
+  return {exit_code::kOutputFailed, message};
 }
 
-std::string check_output_file(const std::string& path) {
-  namespace fs = std::filesystem;
-  if (path.empty()) return "output file: empty path";
+bool same_file(const struct stat& a, const struct stat& b) {
+  return a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
+const char* kind_of(mode_t mode) {
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// Creates `dir` and its parents if missing; "" or an error naming `what`.
+std::string create_directory(const std::string& dir, const std::string& what) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) return path + ": is a directory";
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    return what + ": cannot create directory" + (what == dir ? "" : " " + dir) + ": " +
+           ec.message();
+  return "";
+}
+
+}  // namespace
+
+namespace {
+int g_stdout_errno = 0;  // the first failed flush's errno (main thread only)
+}  // namespace
+
+void flush_standard_output() {
+  errno = 0;
+  if (std::fflush(stdout) != 0 && g_stdout_errno == 0) g_stdout_errno = errno;
+}
+
+std::string standard_output_error() {
+  flush_standard_output();
+  if (!std::ferror(stdout) && g_stdout_errno == 0) return "";
+  return std::string("standard output: write failed") +
+         (g_stdout_errno != 0 ? std::string(": ") + describe(g_stdout_errno) : std::string()) +
+         "; the summary is lost";
+}
+
+OutputError check_output_file(const std::string& path, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  if (path.empty()) return bad_input("output file: empty path");
+  if (path == "-")
+    return bad_input(
+        "-: an output file cannot be standard output (it carries the summary line); give a file "
+        "name");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {  // follows symbolic links: the target is judged
+    if (S_ISDIR(st.st_mode)) return bad_input(path + ": is a directory");
+    if (!S_ISREG(st.st_mode))
+      return bad_input(path + ": is " + kind_of(st.st_mode) +
+                       "; an output must be a regular file or not exist yet");
+    for (const std::string& input : inputs) {
+      struct stat in {};
+      if (::stat(input.c_str(), &in) == 0 && same_file(in, st))
+        return bad_input(path + ": is the input file " + input +
+                         "; an output never replaces an input");
+    }
+    for (const int fd : {STDOUT_FILENO, STDERR_FILENO}) {
+      struct stat stream {};
+      if (::fstat(fd, &stream) == 0 && same_file(stream, st))
+        return bad_input(path + ": is this command's standard " +
+                         (fd == STDOUT_FILENO ? "output" : "error") + "; give another file name");
+    }
+  }
   fs::path parent = fs::path(path).parent_path();
   if (parent.empty()) parent = ".";
-  const fs::file_status st = fs::status(parent, ec);
-  if (!fs::exists(st)) {
-    fs::create_directories(parent, ec);
-    if (ec) return path + ": cannot create directory " + parent.string() + ": " + ec.message();
-  } else if (!fs::is_directory(st)) {
-    return path + ": " + parent.string() + " is not a directory";
+  std::error_code ec;
+  const fs::file_status parent_status = fs::status(parent, ec);
+  if (!fs::exists(parent_status)) {
+    if (auto e = create_directory(parent.string(), path); !e.empty()) return cannot_write(e);
+  } else if (!fs::is_directory(parent_status)) {
+    return bad_input(path + ": " + parent.string() + " is not a directory");
   }
-  if (auto e = probe_directory(parent.string()); !e.empty()) return path + ": " + e;
-  return "";
+  if (auto e = probe_directory(parent.string()); !e.empty()) return cannot_write(path + ": " + e);
+  return {};
+}
+
+OutputError OutputDirectory::open(const std::string& dir, bool force) {
+  namespace fs = std::filesystem;
+  close();
+  if (dir.empty()) return bad_input("output directory: empty path");
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) == 0) {
+    if (!S_ISDIR(st.st_mode)) return bad_input(dir + ": exists and is not a directory");
+  } else if (auto e = create_directory(dir, dir); !e.empty()) {
+    return cannot_write(e);
+  }
+  // Anything but the lock file: refused without --force.
+  auto refuse_non_empty = [&]() -> OutputError {
+    if (force) return {};
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      if (it->path().filename() != kLockFile)
+        return bad_input(dir + ": directory is not empty (use --force to write into it anyway)");
+    if (ec) return cannot_write(dir + ": cannot list directory: " + ec.message());
+    return {};
+  };
+  // The lock file of an earlier (or running) run is used as it is; a new one is created
+  // only in a directory that passes the emptiness check, so a refused directory gets none.
+  // O_NOFOLLOW: never truncate a file elsewhere through a planted link.
+  const std::string lock_path = dir + "/" + kLockFile;
+  int fd = ::open(lock_path.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) {
+    if (auto e = refuse_non_empty()) return e;
+    fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+  }
+  if (fd < 0)
+    return cannot_write(dir + ": cannot create files in this directory: " + describe(errno));
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    if (errno == EWOULDBLOCK) {
+      char holder[32] = {};
+      const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+      ::close(fd);
+      const long pid = n > 0 ? std::strtol(holder, nullptr, 10) : 0;
+      return bad_input(dir + ": another invfree run is writing into this directory" +
+                       (pid > 0 ? " (pid " + std::to_string(pid) + ")" : std::string()) +
+                       "; wait for it to end or choose another directory");
+    }
+    // A filesystem without locks (ENOLCK, EOPNOTSUPP): the run goes on unlocked.
+  }
+  lock_fd_ = fd;
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) == 0) (void)!::pwrite(fd, pid.data(), pid.size(), 0);
+  if (auto e = refuse_non_empty()) {  // checked again now that no other run can write
+    close();
+    return e;
+  }
+  if (auto e = probe_directory(dir); !e.empty()) {
+    close();
+    return cannot_write(e);
+  }
+  return {};
+}
+
+void OutputDirectory::close() {
+  if (lock_fd_ < 0) return;
+  ::close(lock_fd_);  // releases the flock
+  lock_fd_ = -1;
 }
 
 }  // namespace invfree

@@ -1,14 +1,32 @@
-// Output that is never half-written: a file is written under a temporary name in the
-// same directory ("<path>.tmp<pid>_<n>") and renamed over its final name only when
-// complete, so a reader, a crash, a full disk or Ctrl-C never leaves a truncated file
-// under a final name. Errors (full disk, file-size limit, unwritable or missing
-// directory) come back as one line naming the path, and the temporary is removed.
+// The rules every output follows (docs/outputs.md), for every command:
+// - A file is written under a temporary name in the same directory
+//   ("<path>.tmp<pid>_<n>") and renamed over its final name only when complete, so a
+//   reader, a crash, a full disk or Ctrl-C never leaves a truncated file under a final
+//   name. Errors (full disk, file-size limit, unwritable directory) come back as one line
+//   naming the path, and the temporary is removed.
+// - Before a run, an output file must be a regular file or not exist (a device, FIFO,
+//   socket or directory is refused, also through a symbolic link), must not be one of the
+//   run's input files or its standard output or error (same device and inode), and its
+//   directory is created if missing and must accept a new file.
+// - A directory the run fills (simulate --obj, render --out, live --record) is created if
+//   missing, locked for the whole run (flock on DIR/.invfree.lock, which stays: removing
+//   it could let two runs lock different files), and must be empty unless --force.
 #pragma once
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace invfree {
+
+// Why an output cannot be used: a bad choice of target (exit_code::kBadInput) or one that
+// cannot be written (exit_code::kOutputFailed), with a one-line message naming the path.
+// exit_code 0: no error.
+struct OutputError {
+  int exit_code = 0;
+  std::string message;
+  explicit operator bool() const { return exit_code != 0; }
+};
 
 // Writes `data` to `path` atomically. Returns "" or a one-line error naming the path.
 std::string write_file_atomically(const std::string& path, std::string_view data);
@@ -34,15 +52,36 @@ class AtomicFileWriter {
   int fd_ = -1;
 };
 
-// Creates `dir` (and parents) if missing and checks that a file can be created in it.
-// With `must_be_empty`, refuses a directory that already holds files unless `force`
-// (then sets *refused_non_empty, so the caller can report it as bad input rather than
-// as an output failure). Returns "" or a one-line error.
-std::string prepare_output_directory(const std::string& dir, bool must_be_empty, bool force,
-                                     bool* refused_non_empty = nullptr);
+// Checks, before a long run, that `path` can be written later (the rules above); `inputs`
+// are the paths of the files the run reads (names that do not exist are ignored).
+OutputError check_output_file(const std::string& path, const std::vector<std::string>& inputs = {});
 
-// Checks, before a long run, that `path` can be written later: not a directory, and its
-// directory (created if missing) accepts a new file. Returns "" or a one-line error.
-std::string check_output_file(const std::string& path);
+// A directory a run fills, held (locked) from open() until close() or destruction.
+// Standard output carries each command's summary line through stdio's buffer, so a full
+// disk or a file-size limit shows up only when it is flushed, and stdio keeps the error
+// flag but not its reason. Commands flush with flush_standard_output(), which remembers
+// the first failure's reason; main reports standard_output_error() (one line, or "")
+// after the command, so a lost summary is never an exit 0.
+void flush_standard_output();
+std::string standard_output_error();  // flushes first
+
+class OutputDirectory {
+ public:
+  static constexpr const char* kLockFile = ".invfree.lock";
+
+  OutputDirectory() = default;
+  ~OutputDirectory() { close(); }
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
+
+  // Creates `dir` if missing, locks it (another run holding it: kBadInput, naming its
+  // pid), refuses it when it holds anything but the lock file unless `force`
+  // (kBadInput), and checks that a file can be created in it (kOutputFailed).
+  OutputError open(const std::string& dir, bool force);
+  void close();  // releases the lock; the lock file stays
+
+ private:
+  int lock_fd_ = -1;
+};
 
 }  // namespace invfree

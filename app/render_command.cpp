@@ -9,6 +9,7 @@
 // Progress (frame i/N, elapsed, ETA) goes to stderr when it is a terminal; a one-line
 // summary to stdout.
 #include <pthread.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -57,6 +58,9 @@ struct RenderOptions {
   int writer_threads = 1;
 };
 
+// The frame rates a movie may have (--fps, or the real-time rate it defaults to).
+constexpr double kMinFps = 0.1, kMaxFps = 1000.0;
+
 int fail(int code, const std::string& message) {
   std::fprintf(stderr, "invfree: %s\n", message.c_str());
   return code;
@@ -95,10 +99,16 @@ std::string frame_name(int i) {
   return buf;
 }
 
-// Runs ffmpeg over DIR/frame_%06d.png into DIR/movie.mp4 (H.264, yuv420p, dimensions
-// padded to even numbers with white, as yuv420p needs). Written under a temporary name
-// and renamed when ffmpeg succeeded. Returns "" or a one-line error.
-std::string make_movie(const std::string& ffmpeg, const std::string& dir, double fps) {
+// Runs ffmpeg over this run's frames DIR/frame_000000.png .. frame_<frames-1>.png into
+// DIR/movie.mp4 (H.264, yuv420p, dimensions padded to even numbers with white, as yuv420p
+// needs); older frames after them (--force) are not part of it. Written under a
+// temporary name and renamed when ffmpeg succeeded. An interruption reaches ffmpeg too;
+// when it stopped ffmpeg there is no movie and no error. ffmpeg's own messages are held
+// in a memory file and shown only when it failed by itself. Returns "" or a one-line
+// error; *made tells whether DIR/movie.mp4 was written.
+std::string make_movie(const std::string& ffmpeg, const std::string& dir, int frames, double fps,
+                       bool* made) {
+  *made = false;
   const std::string tmp = dir + "/movie.tmp" + std::to_string(::getpid()) + ".mp4";
   const std::string final_path = dir + "/movie.mp4";
   char rate[32];
@@ -114,6 +124,8 @@ std::string make_movie(const std::string& ffmpeg, const std::string& dir, double
                                    dir + "/frame_%06d.png",
                                    "-vf",
                                    "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white",
+                                   "-frames:v",
+                                   std::to_string(frames),
                                    "-c:v",
                                    "libx264",
                                    "-pix_fmt",
@@ -127,24 +139,47 @@ std::string make_movie(const std::string& ffmpeg, const std::string& dir, double
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   std::fflush(nullptr);
+  const int messages = ::memfd_create("ffmpeg-messages", MFD_CLOEXEC);  // -1: inherit stderr
   const pid_t pid = ::fork();
-  if (pid < 0) return "cannot start ffmpeg: fork failed";
+  if (pid < 0) {
+    if (messages >= 0) ::close(messages);
+    return "cannot start ffmpeg: fork failed";
+  }
   if (pid == 0) {
+    if (messages >= 0) ::dup2(messages, STDERR_FILENO);
     ::execv(argv[0], argv.data());
     std::_Exit(127);
   }
+  forward_interrupts_to(pid);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return "ffmpeg: waitpid failed";
+    if (errno != EINTR) {
+      forward_interrupts_to(0);
+      if (messages >= 0) ::close(messages);
+      return "ffmpeg: waitpid failed";
+    }
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::filesystem::remove(tmp);
+  forward_interrupts_to(0);
+  const bool failed = !WIFEXITED(status) || WEXITSTATUS(status) != 0;
+  if (messages >= 0) {
+    if (failed && !interrupted()) {  // copy ffmpeg's messages to our stderr
+      char buf[4096];
+      off_t at = 0;
+      for (ssize_t n; (n = ::pread(messages, buf, sizeof buf, at)) > 0; at += n)
+        (void)!::write(STDERR_FILENO, buf, static_cast<size_t>(n));
+    }
+    ::close(messages);
+  }
+  std::error_code ec;
+  if (failed) {
+    std::filesystem::remove(tmp, ec);
+    if (interrupted()) return "";  // the caller reports the interruption
     return "ffmpeg could not make " + final_path + " (exit status " +
            std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "; its message is above)";
   }
-  std::error_code ec;
   std::filesystem::rename(tmp, final_path, ec);
   if (ec) return final_path + ": cannot rename into place: " + ec.message();
+  *made = true;
   return "";
 }
 
@@ -262,17 +297,20 @@ int run_render(const RenderOptions& opt) {
                   "--mp4 to write the PNG frames only)");
   }
   const double fps = opt.fps > 0.0 ? opt.fps : 1.0 / (scene->h * opt.steps_per_frame);
-  {
-    bool refused = false;
-    if (auto e = prepare_output_directory(opt.out, true, opt.force, &refused); !e.empty())
-      return fail(refused ? exit_code::kBadInput : exit_code::kOutputFailed, e);
+  if (opt.mp4 && !(fps >= kMinFps && fps <= kMaxFps)) {
+    char rate[32];
+    std::snprintf(rate, sizeof rate, "%.6g", fps);
+    return fail(exit_code::kBadInput,
+                std::string("--mp4: the real-time frame rate 1 / (h * steps-per-frame) = ") + rate +
+                    " frames/s is outside 0.1 to 1000; give --fps or change --steps-per-frame");
   }
+  OutputDirectory out_dir;
+  if (auto e = out_dir.open(opt.out, opt.force)) return fail(e.exit_code, e.message);
 
   auto context = render::OffscreenContext::create(&error);
   if (!context) return fail(exit_code::kOutputFailed, "offscreen rendering: " + error);
   auto renderer = render::Renderer::create(context->get_proc_address(), width, height, &error);
   if (!renderer) return fail(exit_code::kOutputFailed, "offscreen rendering: " + error);
-  install_interrupt_handler();
 
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] {
@@ -309,10 +347,13 @@ int run_render(const RenderOptions& opt) {
   if (!write_error.empty()) return fail(exit_code::kOutputFailed, write_error);
 
   std::string movie;
+  bool movie_stopped = false;  // interrupted while ffmpeg ran
   if (opt.mp4 && failure.status == StepStatus::Ok && !interrupted() && frames > 0) {
-    if (auto e = make_movie(ffmpeg, opt.out, fps); !e.empty())
+    bool made = false;
+    if (auto e = make_movie(ffmpeg, opt.out, frames, fps, &made); !e.empty())
       return fail(exit_code::kOutputFailed, e);
-    movie = ", " + opt.out + "/movie.mp4";
+    if (made) movie = ", " + opt.out + "/movie.mp4";
+    movie_stopped = !made;
   }
   std::printf(
       "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, det F "
@@ -324,8 +365,12 @@ int run_render(const RenderOptions& opt) {
     return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) +
                                            " failed: " + step_status_name(failure.status) + ": " +
                                            failure.message);
+  if (movie_stopped)
+    return fail(interrupted_exit_code(), "interrupted while making " + opt.out +
+                                             "/movie.mp4 (none written); the " +
+                                             std::to_string(frames) + " frames are complete");
   if (interrupted())
-    return fail(exit_code::kInterrupted, "interrupted after frame " + std::to_string(frames) +
+    return fail(interrupted_exit_code(), "interrupted after frame " + std::to_string(frames) +
                                              "; the frames written are complete");
   return exit_code::kOk;
 }
@@ -344,7 +389,9 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--steps-per-frame", opt->steps_per_frame, "time steps between frames")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--out", opt->out, "output directory (must be empty or new, see --force)")
+  cmd->add_option("--out", opt->out,
+                  "output directory (must be empty or new, see --force; locked while the run "
+                  "writes, see docs/outputs.md)")
       ->type_name("DIR")
       ->capture_default_str()
       ->check(non_empty_path());
@@ -355,13 +402,14 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--mp4", opt->mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");
   cmd->add_option("--fps", opt->fps,
                   "frame rate of movie.mp4 (default: real time, 1 / (h * steps-per-frame))")
-      ->check(CLI::Range(0.1, 1000.0));
+      ->check(finite_range(kMinFps, kMaxFps));
   cmd->add_option("--png-level", opt->png_level,
                   "PNG compression level (stb_image_write; 1 is fastest)")
       ->capture_default_str()
       ->check(CLI::Range(1, 9));
   cmd->add_flag("--force", opt->force,
-                "write into a non-empty output directory (overwriting frames)");
+                "write into a non-empty output directory: this run's frames replace those of the "
+                "same number, later ones stay and are not in movie.mp4");
   cmd->callback([opt, &exit_code] { exit_code = run_render(*opt); });
 }
 

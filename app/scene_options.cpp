@@ -29,4 +29,9 @@ std::optional<SceneDef> SceneOptions::resolve(std::string* error) const {
   return load.scene;
 }
 
+std::vector<std::string> SceneOptions::input_files() const {
+  if (find_builtin_scene(scene)) return {};
+  return {scene};
+}
+
 }  // namespace invfree

@@ -1,6 +1,7 @@
 // The scene options every command shares: --scene NAME|FILE and repeated --set
 // section.key=value. `resolve` loads the scene, applies the overrides in order and
-// validates; on failure it returns an empty optional and a one-line error.
+// validates; on failure it returns an empty optional and a one-line error. `input_files`
+// names the file the command reads (none for a built-in scene), which no output may be.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -18,6 +19,7 @@ struct SceneOptions {
 
   void add_to(CLI::App* cmd);
   std::optional<SceneDef> resolve(std::string* error) const;
+  std::vector<std::string> input_files() const;
 };
 
 }  // namespace invfree

@@ -48,16 +48,13 @@ int run_simulate(const SimulateOptions& opt) {
   // Check every output before the first step: a long run must not fail at its end.
   AtomicFileWriter csv_file;
   if (!opt.csv_path.empty()) {
-    if (auto e = check_output_file(opt.csv_path); !e.empty())
-      return fail(exit_code::kOutputFailed, e);
+    if (auto e = check_output_file(opt.csv_path, opt.scene.input_files()))
+      return fail(e.exit_code, e.message);
     if (auto e = csv_file.open(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
-  if (!opt.obj_dir.empty()) {
-    bool refused = false;
-    if (auto e = prepare_output_directory(opt.obj_dir, true, opt.force, &refused); !e.empty())
-      return fail(refused ? exit_code::kBadInput : exit_code::kOutputFailed, e);
-  }
-  install_interrupt_handler();
+  OutputDirectory obj_dir;
+  if (!opt.obj_dir.empty())
+    if (auto e = obj_dir.open(opt.obj_dir, opt.force)) return fail(e.exit_code, e.message);
 
   Simulation sim = make_simulation(*scene);
   auto write_obj = [&]() -> std::string {
@@ -65,7 +62,6 @@ int run_simulate(const SimulateOptions& opt) {
     return write_file_atomically(opt.obj_dir + "/" + std::to_string(sim.step_count) + ".obj",
                                  obj_text(sim));
   };
-  if (auto e = write_obj(); !e.empty()) return fail(exit_code::kOutputFailed, e);
 
   // CSV rows go to the temporary file in chunks, so memory stays flat however long the run.
   std::ostringstream csv;
@@ -81,7 +77,10 @@ int run_simulate(const SimulateOptions& opt) {
   long total_iterations = 0;
   double total_ms = 0.0;
   StepReport failure;
-  for (int k = 0; k < opt.steps && !interrupted(); ++k) {
+  // An OBJ that cannot be written (a full disk) ends the run with exit 4 but, as a failed
+  // step or Ctrl-C does, keeps the CSV complete for the steps whose OBJ was written.
+  std::string obj_error = write_obj();
+  for (int k = 0; obj_error.empty() && k < opt.steps && !interrupted(); ++k) {
     const StepReport r = step(sim);
     if (r.status != StepStatus::Ok) {
       failure = r;
@@ -89,6 +88,7 @@ int run_simulate(const SimulateOptions& opt) {
     }
     total_iterations += r.newton_iterations;
     total_ms += r.wall_ms;
+    if (obj_error = write_obj(); !obj_error.empty()) break;
     const auto det = triangle_det_f(sim);
     const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
     const double gap = min_plane_gap(sim);
@@ -96,12 +96,18 @@ int run_simulate(const SimulateOptions& opt) {
         << "," << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0)
         << "," << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
     if (auto e = flush_csv(false); !e.empty()) return fail(exit_code::kOutputFailed, e);
-    if (auto e = write_obj(); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
-  // The table is complete for the steps taken, also after a failure or an interruption.
+  // The table is complete for the steps kept, also after a failure or an interruption.
   if (csv_file.is_open()) {
-    if (auto e = flush_csv(true); !e.empty()) return fail(exit_code::kOutputFailed, e);
-    if (auto e = csv_file.commit(); !e.empty()) return fail(exit_code::kOutputFailed, e);
+    std::string e = flush_csv(true);
+    if (e.empty()) e = csv_file.commit();
+    if (!e.empty())
+      return fail(exit_code::kOutputFailed, obj_error.empty() ? e : obj_error + "; " + e);
+  }
+  if (!obj_error.empty()) {
+    const long kept = sim.step_count - 1;
+    return fail(exit_code::kOutputFailed,
+                obj_error + (kept >= 0 ? "; outputs hold steps 0.." + std::to_string(kept) : ""));
   }
   const long done = sim.step_count;
   const auto det = triangle_det_f(sim);
@@ -111,7 +117,7 @@ int run_simulate(const SimulateOptions& opt) {
       "%.4f]\n",
       sim.scene.name.c_str(), done, sim.time, done ? double(total_iterations) / done : 0.0,
       done ? total_ms / done : 0.0, *lo, *hi);
-  std::fflush(stdout);
+  flush_standard_output();
   if (failure.status != StepStatus::Ok) {
     char t[32];
     std::snprintf(t, sizeof t, "%.4g", sim.time + sim.scene.h);
@@ -121,7 +127,7 @@ int run_simulate(const SimulateOptions& opt) {
                                            " s); outputs hold steps 0.." + std::to_string(done));
   }
   if (interrupted())
-    return fail(exit_code::kInterrupted, "interrupted after step " + std::to_string(done) +
+    return fail(interrupted_exit_code(), "interrupted after step " + std::to_string(done) +
                                              "; outputs hold steps 0.." + std::to_string(done));
   return exit_code::kOk;
 }

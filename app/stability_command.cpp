@@ -33,8 +33,7 @@ int run_stability_command(const StabilityCommandOptions& opt) {
   const std::string md_path = opt.out + "/stability.md", csv_path = opt.out + "/stability.csv",
                     png_path = opt.out + "/stability.png";
   for (const std::string& p : {md_path, csv_path, png_path})
-    if (auto e = check_output_file(p); !e.empty()) return fail(exit_code::kOutputFailed, e);
-  install_interrupt_handler();
+    if (auto e = check_output_file(p)) return fail(e.exit_code, e.message);
 
   StabilityOptions options;
   options.quick = opt.quick;
@@ -45,7 +44,7 @@ int run_stability_command(const StabilityCommandOptions& opt) {
   options.stop = [] { return interrupted(); };
   const StabilityResult result = run_stability(options);
   if (result.stopped)
-    return fail(exit_code::kInterrupted, "stability interrupted; nothing written");
+    return fail(interrupted_exit_code(), "stability interrupted; nothing written");
   for (const std::string& e : result.scene_errors) std::fprintf(stderr, "invfree: %s\n", e.c_str());
 
   if (auto e = write_file_atomically(csv_path, stability_csv(result)); !e.empty())

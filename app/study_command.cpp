@@ -39,8 +39,7 @@ int run_study_command(const StudyCommandOptions& opt) {
   const std::string csv_path = opt.out + "/study.csv", png_path = opt.out + "/study.png",
                     sweeps_path = opt.out + "/study-sweeps.png";
   for (const std::string& p : {csv_path, png_path, sweeps_path})
-    if (auto e = check_output_file(p); !e.empty()) return fail(exit_code::kOutputFailed, e);
-  install_interrupt_handler();
+    if (auto e = check_output_file(p, opt.scene.input_files())) return fail(e.exit_code, e.message);
 
   StudyOptions options;
   options.quick = opt.quick;
@@ -50,7 +49,7 @@ int run_study_command(const StudyCommandOptions& opt) {
     };
   options.stop = [] { return interrupted(); };
   const StudyResult result = run_study(*scene, options);
-  if (result.stopped) return fail(exit_code::kInterrupted, "study interrupted; nothing written");
+  if (result.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
 
   if (auto e = write_file_atomically(csv_path, study_csv(result)); !e.empty())
     return fail(exit_code::kOutputFailed, e);

@@ -94,6 +94,7 @@ struct LiveAppImpl {
   Vec2 last_mouse = Vec2::Zero();
   // Outputs.
   std::unique_ptr<render::FrameWriter> recorder;
+  OutputDirectory record_output;  // the recording's directory, locked while recording
   std::string record_dir;
   long record_frame = 0;
   std::vector<std::string> messages;
@@ -302,8 +303,8 @@ struct LiveAppImpl {
   }
 
   bool start_recording(const std::string& dir) {
-    if (const std::string e = prepare_output_directory(dir, true, false); !e.empty()) {
-      say("invfree: live: cannot record: " + e);
+    if (const OutputError e = record_output.open(dir, false)) {
+      say("invfree: live: cannot record: " + e.message);
       return false;
     }
     recorder = std::make_unique<render::FrameWriter>(1, kPngCompression);
@@ -319,6 +320,7 @@ struct LiveAppImpl {
     const std::string e = recorder->finish();
     const long n = recorder->written();
     recorder.reset();
+    record_output.close();
     panel.recording = false;
     if (!e.empty()) say("invfree: live: recording failed: " + e);
     say("recorded " + std::to_string(n) + " frame(s) to " + record_dir);
@@ -584,7 +586,9 @@ int run_live(const LiveOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const bool want_last = !options.screenshot_file.empty();
   Image last;
-  for (long f = 0; !app->should_close() && (options.frames <= 0 || f < options.frames); ++f) {
+  for (long f = 0; !app->should_close() && (options.frames <= 0 || f < options.frames) &&
+                   !(options.stop && options.stop());
+       ++f) {
     const bool final_frame = options.frames > 0 && f + 1 == options.frames;
     app->frame(nullptr, want_last && final_frame ? &last : nullptr);
   }

@@ -13,6 +13,7 @@
 // the panel and the scene see exactly what a person's mouse would do.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -44,6 +45,7 @@ struct LiveOptions {
   int width = 1280, height = 720;
   int steps_per_frame = 1;
   int max_segments = kDefaultMaxSegments;
+  std::function<bool()> stop;  // checked every frame: true ends the run (e.g. Ctrl-C)
 };
 
 // Input a test substitutes for the real one in a frame: the mouse (window pixels, y

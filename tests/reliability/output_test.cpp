@@ -3,89 +3,23 @@
 // non-empty output directory, and Ctrl-C / SIGTERM in the middle of a run. After every
 // failure each file under a final name is complete and no temporary file is left.
 #include <gtest/gtest.h>
-#include <sys/mount.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <chrono>
-#include <cstring>
-#include <filesystem>
+#include <csignal>
 #include <fstream>
-#include <sstream>
 #include <string>
-#include <thread>
 
+#include "app/exit_codes.h"
 #include "app/output_files.h"
+#include "tests/reliability/output_checks.h"
 #include "tests/reliability/process.h"
 
 namespace invfree {
 namespace {
 
 namespace fs = std::filesystem;
-using test::run_invfree;
-using test::slurp;
-
-std::string fresh_dir(const std::string& name) {
-  const std::string dir =
-      ::testing::TempDir() + "/output_" + name + "_" + std::to_string(::getpid());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-int count_lines_with_prefix(const std::string& text, const char* prefix) {
-  std::istringstream in(text);
-  int n = 0;
-  for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0;
-  return n;
-}
-
-// Every file under `dir`: .obj files are complete meshes of `nodes` nodes and
-// `triangles` triangles, and no temporary file is left. Returns the number of .obj files.
-int expect_only_complete_objs(const std::string& dir, int nodes, int triangles) {
-  int objs = 0;
-  if (!fs::exists(dir)) return 0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    EXPECT_EQ(name.find(".tmp"), std::string::npos) << "temporary file left behind: " << name;
-    if (entry.path().extension() != ".obj") continue;
-    ++objs;
-    const std::string text = slurp(entry.path().string());
-    EXPECT_FALSE(text.empty()) << name;
-    EXPECT_EQ(text.back(), '\n') << name << " is truncated";
-    EXPECT_EQ(count_lines_with_prefix(text, "v "), nodes) << name << " is truncated";
-    EXPECT_EQ(count_lines_with_prefix(text, "f "), triangles) << name << " is truncated";
-  }
-  return objs;
-}
-
-bool one_line(const std::string& err) {
-  return std::count(err.begin(), err.end(), '\n') == 1;
-}
-
-// A tmpfs of `size` mounted at `dir` for the scope's lifetime, when this process may.
-class TinyFilesystem {
- public:
-  TinyFilesystem(const std::string& dir, const std::string& options) : dir_(dir) {
-    fs::create_directories(dir);
-    mounted_ = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, options.c_str()) == 0;
-    if (!mounted_) reason_ = std::strerror(errno);
-  }
-  ~TinyFilesystem() {
-    if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
-  }
-  bool mounted() const { return mounted_; }
-  const std::string& reason() const { return reason_; }
-  void remount_read_only() {
-    ASSERT_EQ(::mount("tmpfs", dir_.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, nullptr), 0)
-        << std::strerror(errno);
-  }
-
- private:
-  std::string dir_, reason_;
-  bool mounted_ = false;
-};
+using namespace test;
 
 TEST(AtomicFiles, WriteReplaceAndAbandon) {
   const std::string dir = fresh_dir("atomic");
@@ -115,16 +49,19 @@ TEST(AtomicFiles, WriteReplaceAndAbandon) {
   EXPECT_NE(e1.find(dir + "/missing/x.txt: cannot create file: No such file or directory"),
             std::string::npos)
       << e1;
-  EXPECT_NE(check_output_file(dir).find("is a directory"), std::string::npos);
-  EXPECT_NE(
-      prepare_output_directory(dir + "/a.txt", false, false).find("exists and is not a directory"),
-      std::string::npos);
-  bool refused = false;
-  EXPECT_NE(prepare_output_directory(dir, true, false, &refused).find("not empty (use --force"),
-            std::string::npos);
-  EXPECT_TRUE(refused);
-  EXPECT_EQ(prepare_output_directory(dir, true, true, &refused), "");
-  EXPECT_FALSE(refused);
+  EXPECT_NE(check_output_file(dir).message.find("is a directory"), std::string::npos);
+  EXPECT_EQ(check_output_file(dir).exit_code, exit_code::kBadInput);
+  OutputDirectory out;
+  OutputError e = out.open(dir + "/a.txt", false);
+  EXPECT_NE(e.message.find("exists and is not a directory"), std::string::npos) << e.message;
+  EXPECT_EQ(e.exit_code, exit_code::kBadInput);
+  e = out.open(dir, false);
+  EXPECT_NE(e.message.find("not empty (use --force"), std::string::npos) << e.message;
+  EXPECT_EQ(e.exit_code, exit_code::kBadInput);
+  EXPECT_FALSE(fs::exists(dir + "/" + OutputDirectory::kLockFile))
+      << "a refused directory gets no lock file";
+  e = out.open(dir, true);
+  EXPECT_FALSE(e) << e.message;
   fs::remove_all(dir);
 }
 
@@ -144,7 +81,10 @@ TEST(FullDisk, TinyTmpfsGivesAClearErrorAndNoTruncatedFile) {
   const int objs = expect_only_complete_objs(dir + "/obj", 25, 32);
   EXPECT_GT(objs, 3);
   EXPECT_LT(objs, 300);
-  EXPECT_FALSE(fs::exists(dir + "/run.csv")) << "the run failed: no table under its final name";
+  // The table would be kept (see CsvOnAHealthyDiskIsKept), but this disk has no room
+  // left for its last rows either: it is not left half-written, and the line says so.
+  EXPECT_FALSE(fs::exists(dir + "/run.csv")) << "no room to complete the table";
+  EXPECT_NE(r.err.find(dir + "/run.csv: write failed"), std::string::npos) << r.err;
   expect_only_complete_objs(dir, 25, 32);  // no temporary CSV either
 }
 
@@ -152,15 +92,18 @@ TEST(FullDisk, FileSizeLimit) {
   const std::string dir = fresh_dir("fsize");
   // ulimit -f 8: no file may exceed 8 KiB; an n_seg 16 OBJ is ~20 kB, so the very
   // first one fails (EFBIG, reported like a full disk rather than killing the process).
-  auto r =
-      run_invfree({"simulate", "--steps", "5", "--set", "mesh.n_seg=16", "--obj", dir + "/obj"}, {},
-                  "ulimit -f 8;");
+  // The CSV, far below the limit, is kept complete for the steps kept: none.
+  auto r = run_invfree({"simulate", "--steps", "5", "--set", "mesh.n_seg=16", "--obj", dir + "/obj",
+                        "--csv", dir + "/kept.csv"},
+                       {}, "ulimit -f 8;");
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
   EXPECT_NE(r.err.find(dir + "/obj/0.obj: write failed: File too large (file-size limit reached)"),
             std::string::npos)
       << r.err;
   EXPECT_EQ(expect_only_complete_objs(dir + "/obj", 289, 512), 0);
+  EXPECT_EQ(slurp(dir + "/kept.csv"),
+            "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,wall_ms\n");
   // A CSV that outgrows the limit: no table under its final name, no temporary left.
   r = run_invfree({"simulate", "--steps", "2000", "--csv", dir + "/run.csv"}, {}, "ulimit -f 16;");
   EXPECT_EQ(r.code, 4) << r.err;
@@ -168,6 +111,31 @@ TEST(FullDisk, FileSizeLimit) {
   EXPECT_FALSE(fs::exists(dir + "/run.csv"));
   expect_only_complete_objs(dir, 0, 0);
   fs::remove_all(dir);
+}
+
+// Issue 20: the OBJ directory's disk fills; the CSV, on a healthy disk, is kept complete
+// for the steps whose OBJ was written (as after a failed step or Ctrl-C), not discarded.
+TEST(FullDisk, CsvOnAHealthyDiskIsKept) {
+  const std::string dir = fresh_dir("tmpfs_obj");
+  TinyFilesystem tiny(dir + "/small", "size=48k");
+  if (!tiny.mounted())
+    GTEST_SKIP() << "cannot mount a tmpfs here (" << tiny.reason() << "); FileSizeLimit covers it";
+  const auto r = run_invfree(
+      {"simulate", "--steps", "300", "--obj", dir + "/small/obj", "--csv", dir + "/run.csv"});
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("No space left on device (disk full)"), std::string::npos) << r.err;
+  const int objs = expect_only_complete_objs(dir + "/small/obj", 25, 32);
+  ASSERT_GT(objs, 3);
+  ASSERT_LT(objs, 300);
+  EXPECT_NE(r.err.find("outputs hold steps 0.." + std::to_string(objs - 1)), std::string::npos)
+      << r.err;
+  // Header and one row per step 1..objs-1, the last one the step of the last OBJ.
+  const std::string csv = slurp(dir + "/run.csv");
+  EXPECT_EQ(count_lines_with_prefix(csv, ""), objs) << csv;
+  EXPECT_NE(csv.find("\n" + std::to_string(objs - 1) + ","), std::string::npos) << csv;
+  EXPECT_EQ(csv.find("\n" + std::to_string(objs) + ","), std::string::npos) << csv;
+  expect_only_complete_objs(dir, 0, 0);  // no temporary CSV
 }
 
 TEST(UnwritableOutput, ClearErrorBeforeAnyStep) {
@@ -222,31 +190,20 @@ TEST(ExistingOutput, NonEmptyDirectoryRefusedUnlessForce) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(expect_only_complete_objs(dir, 25, 32), 4);
   EXPECT_EQ(slurp(dir + "/keep.txt"), "precious\n");
-  // An output path that is a file, or a CSV path that is a directory.
+  // An output path that is a file, or a CSV path that is a directory: the wrong kind of
+  // target is bad input (docs/outputs.md).
   r = run_invfree({"simulate", "--steps", "3", "--obj", dir + "/keep.txt"});
-  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("keep.txt: exists and is not a directory"), std::string::npos) << r.err;
   r = run_invfree({"simulate", "--steps", "3", "--csv", dir});
-  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find(dir + ": is a directory"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
 
-// Starts a long run, waits for `min_objs` OBJ files, sends `sig`, and checks the result.
-// Waits (at most 120 s) until `dir` holds at least `count` files ending in `extension`.
-void wait_for_files(const std::string& dir, const std::string& extension, int count) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  auto files = [&] {
-    int n = 0;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir, ec)) n += e.path().extension() == extension;
-    return n;
-  };
-  while (files() < count && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-}
-
-void interrupt_run(int sig) {
+// Starts a long run, waits for 40 OBJ files, sends `sig`, and checks that the run stops
+// with `expected_code`, keeping complete outputs for the steps taken.
+void interrupt_run(int sig, int expected_code) {
   const std::string dir = fresh_dir("interrupt_" + std::to_string(sig));
   test::Process p({INVFREE_EXE, "simulate", "--steps", "100000000", "--obj", dir + "/obj", "--csv",
                    dir + "/run.csv"});
@@ -254,7 +211,7 @@ void interrupt_run(int sig) {
   wait_for_files(dir + "/obj", ".obj", 40);
   ASSERT_EQ(::kill(p.pid(), sig), 0);
   const test::ProcessResult r = p.wait();
-  EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_EQ(r.code, expected_code) << r.err;
   EXPECT_TRUE(one_line(r.err)) << r.err;
   long last = -1;
   ASSERT_EQ(std::sscanf(r.err.c_str(), "invfree: interrupted after step %ld", &last), 1) << r.err;
@@ -269,25 +226,6 @@ void interrupt_run(int sig) {
       << "the summary still prints";
   expect_only_complete_objs(dir, 0, 0);  // no temporary CSV
   fs::remove_all(dir);
-}
-
-// Every PNG under `dir` is whole (signature first, IEND chunk last) and no temporary is
-// left; returns the number of frames.
-int expect_only_complete_pngs(const std::string& dir) {
-  int frames = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    EXPECT_EQ(name.find(".tmp"), std::string::npos) << "temporary file left behind: " << name;
-    if (entry.path().extension() != ".png") continue;
-    ++frames;
-    const std::string png = slurp(entry.path().string());
-    EXPECT_GT(png.size(), 20u) << name;
-    if (png.size() <= 20u) continue;
-    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << name;
-    EXPECT_EQ(png.substr(png.size() - 8), std::string("IEND\xae\x42\x60\x82", 8))
-        << name << " is truncated";
-  }
-  return frames;
 }
 
 TEST(Interrupt, CtrlCDuringARenderLeavesOnlyCompleteFrames) {
@@ -325,10 +263,14 @@ TEST(FullDisk, RenderOnATinyTmpfs) {
 }
 
 TEST(Interrupt, CtrlCKeepsOnlyCompleteOutput) {
-  interrupt_run(SIGINT);
+  interrupt_run(SIGINT, 130);
 }
 TEST(Interrupt, SigtermKeepsOnlyCompleteOutput) {
-  interrupt_run(SIGTERM);
+  interrupt_run(SIGTERM, 130);
+}
+// A dropped SSH session: the run stops as for Ctrl-C, with exit code 129.
+TEST(Interrupt, HangUpKeepsOnlyCompleteOutput) {
+  interrupt_run(SIGHUP, 129);
 }
 
 }  // namespace
