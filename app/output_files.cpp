@@ -209,7 +209,7 @@ OutputError check_output_file(const std::string& path, const std::vector<std::st
   if (!fs::exists(parent_status)) {
     if (auto e = create_directory(parent.string(), path); !e.empty()) return cannot_write(e);
   } else if (!fs::is_directory(parent_status)) {
-    return bad_input(path + ": " + parent.string() + " is not a directory");
+    return cannot_write(path + ": " + parent.string() + " is not a directory");
   }
   if (auto e = probe_directory(parent.string()); !e.empty()) return cannot_write(path + ": " + e);
   return {};
@@ -235,19 +235,21 @@ OutputError OutputDirectory::open(const std::string& dir, bool force) {
     if (ec) return cannot_write(dir + ": cannot list directory: " + ec.message());
     return {};
   };
-  // The lock file of an earlier (or running) run is used as it is; a new one is created
-  // only in a directory that passes the emptiness check, so a refused directory gets none.
-  // O_NOFOLLOW: never truncate a file elsewhere through a planted link.
-  const std::string lock_path = dir + "/" + kLockFile;
-  int fd = ::open(lock_path.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
-  if (fd < 0) {
-    if (auto e = refuse_non_empty()) return e;
-    fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
-  }
-  if (fd < 0)
-    return cannot_write(dir + ": cannot create files in this directory: " + describe(errno));
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    if (errno == EWOULDBLOCK) {
+  // The lock file of a run that was killed is used as it is; a new one is created only in
+  // a directory that passes the emptiness check, so a refused directory gets none.
+  // O_NOFOLLOW: never truncate a file elsewhere through a planted link. The holder
+  // removes the file when it is done (close()), so a lock taken on a file that was
+  // removed in the meantime does not count: then try again with the new one.
+  lock_path_ = dir + "/" + kLockFile;
+  for (int attempt = 0; lock_fd_ < 0; ++attempt) {
+    int fd = ::open(lock_path_.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0) {
+      if (auto e = refuse_non_empty()) return e;
+      fd = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    }
+    if (fd < 0)
+      return cannot_write(dir + ": cannot create files in this directory: " + describe(errno));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
       char holder[32] = {};
       const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
       ::close(fd);
@@ -256,9 +258,18 @@ OutputError OutputDirectory::open(const std::string& dir, bool force) {
                        (pid > 0 ? " (pid " + std::to_string(pid) + ")" : std::string()) +
                        "; wait for it to end or choose another directory");
     }
-    // A filesystem without locks (ENOLCK, EOPNOTSUPP): the run goes on unlocked.
+    // (Another flock error: a filesystem without locks; the run goes on unlocked.)
+    struct stat held {
+    }, named{};
+    if ((::fstat(fd, &held) == 0 && ::stat(lock_path_.c_str(), &named) == 0 &&
+         same_file(held, named)) ||
+        attempt == 10) {
+      lock_fd_ = fd;
+    } else {
+      ::close(fd);
+    }
   }
-  lock_fd_ = fd;
+  const int fd = lock_fd_;
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd, 0) == 0) (void)!::pwrite(fd, pid.data(), pid.size(), 0);
   if (auto e = refuse_non_empty()) {  // checked again now that no other run can write
@@ -274,6 +285,12 @@ OutputError OutputDirectory::open(const std::string& dir, bool force) {
 
 void OutputDirectory::close() {
   if (lock_fd_ < 0) return;
+  // Removed while still held, and only if it is still ours (see open()).
+  struct stat held {
+  }, named{};
+  if (::fstat(lock_fd_, &held) == 0 && ::stat(lock_path_.c_str(), &named) == 0 &&
+      same_file(held, named))
+    ::unlink(lock_path_.c_str());
   ::close(lock_fd_);  // releases the flock
   lock_fd_ = -1;
 }

@@ -9,8 +9,9 @@
 //   run's input files or its standard output or error (same device and inode), and its
 //   directory is created if missing and must accept a new file.
 // - A directory the run fills (simulate --obj, render --out, live --record) is created if
-//   missing, locked for the whole run (flock on DIR/.invfree.lock, which stays: removing
-//   it could let two runs lock different files), and must be empty unless --force.
+//   missing, locked for the whole run (flock on DIR/.invfree.lock, removed at the end;
+//   a killed run leaves it behind, and it blocks nobody: the lock died with the process),
+//   and must be empty (the lock file aside) unless --force.
 #pragma once
 
 #include <string>
@@ -78,9 +79,10 @@ class OutputDirectory {
   // pid), refuses it when it holds anything but the lock file unless `force`
   // (kBadInput), and checks that a file can be created in it (kOutputFailed).
   OutputError open(const std::string& dir, bool force);
-  void close();  // releases the lock; the lock file stays
+  void close();  // removes the lock file and releases the lock
 
  private:
+  std::string lock_path_;
   int lock_fd_ = -1;
 };
 

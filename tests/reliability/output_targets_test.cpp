@@ -4,7 +4,8 @@
 // one of the inputs (same path, a hard or symbolic link, another spelling) likewise; a
 // missing parent directory is created. And one writer per output directory: a second
 // run into a directory another run is filling is refused (exit 2, naming the holder's
-// pid), also with --force; a run killed with SIGKILL leaves a lock that does not block.
+// pid), also with --force; the lock file is removed at the end of a run, and one left by
+// a run killed with SIGKILL does not block.
 // Device nodes are made inside a temporary directory, never under /dev.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -144,9 +145,17 @@ TEST(OutputLock, OneRunPerDirectoryInOneProcess) {
             std::string::npos)
       << e.message;
   first.close();
-  // Released: the directory holding only the lock file counts as empty.
+  EXPECT_FALSE(fs::exists(dir + "/" + OutputDirectory::kLockFile)) << "removed when released";
   e = second.open(dir, false);
   EXPECT_FALSE(e) << e.message;
+  second.close();
+  // The lock file a killed run left behind: held by nobody, and not counted as content.
+  { std::ofstream(dir + "/" + OutputDirectory::kLockFile) << "12345\n"; }
+  e = first.open(dir, false);
+  EXPECT_FALSE(e) << e.message;
+  EXPECT_EQ(slurp(dir + "/" + OutputDirectory::kLockFile), std::to_string(::getpid()) + "\n");
+  first.close();
+  EXPECT_TRUE(fs::is_empty(dir));
   fs::remove_all(dir);
 }
 
@@ -182,6 +191,7 @@ TEST(OutputLock, ASecondWriterIsRefused) {
   const ProcessResult later =
       run_invfree({"render", "--frames", "2", "--size", "96x64", "--out", dir, "--force"});
   EXPECT_EQ(later.code, 0) << later.err;
+  EXPECT_FALSE(fs::exists(dir + "/" + OutputDirectory::kLockFile)) << "removed at the end";
   fs::remove_all(fs::path(dir).parent_path());
 }
 
