@@ -18,6 +18,7 @@
 #include "potential/incremental_potential.h"
 #include "scene/scene.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
@@ -102,7 +103,7 @@ Simulation compressed(int n_seg) {
 }
 
 VecX state_of(const Simulation& sim) {
-  VecX z(sim.problem.dof_count());
+  VecX z(sim.workspace->problem.dof_count());
   z.head(sim.x.size()) = sim.x;
   z[sim.x.size()] = sim.ceiling_y;
   return z;
@@ -113,7 +114,8 @@ void BM_Assembly(benchmark::State& state) {
   Simulation sim = compressed(static_cast<int>(state.range(0)));
   const VecX z = state_of(sim);
   VecX g;
-  for (auto _ : state) ip_gradient_hessian(sim.problem, z, g, sim.workspace.hessian);
+  for (auto _ : state)
+    ip_gradient_hessian(sim.workspace->problem, z, g, sim.workspace->newton.hessian);
   state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
   state.counters["threads"] = thread_count();
 }
@@ -123,7 +125,7 @@ BENCHMARK(BM_Assembly)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 void BM_Energy(benchmark::State& state) {
   Simulation sim = compressed(static_cast<int>(state.range(0)));
   const VecX z = state_of(sim);
-  for (auto _ : state) benchmark::DoNotOptimize(ip_energy(sim.problem, z));
+  for (auto _ : state) benchmark::DoNotOptimize(ip_energy(sim.workspace->problem, z));
   state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
 }
 BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
@@ -141,8 +143,8 @@ void BM_LdltSolve(benchmark::State& state) {
   Simulation sim = make_simulation(scene);
   step(sim);
   VecX g;
-  ip_gradient_hessian(sim.problem, state_of(sim), g, sim.workspace.hessian);
-  const Eigen::SparseMatrix<double>& h = sim.workspace.hessian.matrix;
+  ip_gradient_hessian(sim.workspace->problem, state_of(sim), g, sim.workspace->newton.hessian);
+  const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
   SparseLdlt ldlt;
   analyze_like_the_solver(h, ldlt);  // METIS from 5,000 unknowns, as in the solver
   if (!ldlt.factorize(h)) {

@@ -33,7 +33,7 @@ SavedState save(const Simulation& sim) {
   s.ceiling_y = sim.ceiling_y;
   s.ceiling_nominal = sim.ceiling_nominal;
   s.time = sim.time;
-  s.ceiling_stiffness = sim.problem.ceiling_stiffness;
+  s.ceiling_stiffness = sim.ceiling_stiffness;
   s.step_count = sim.step_count;
   return s;
 }
@@ -44,7 +44,7 @@ void restore(const SavedState& s, Simulation& sim) {
   sim.ceiling_y = s.ceiling_y;
   sim.ceiling_nominal = s.ceiling_nominal;
   sim.time = s.time;
-  sim.problem.ceiling_stiffness = s.ceiling_stiffness;
+  sim.ceiling_stiffness = s.ceiling_stiffness;
   sim.step_count = s.step_count;
 }
 

@@ -12,6 +12,7 @@
 #include "material/triangle_elasticity.h"
 #include "potential/incremental_potential.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 #include "tests/test_support.h"
 
 namespace invfree {
@@ -90,7 +91,7 @@ struct Problem {
     for (int k = 0; k < 120; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);
     // The step's problem as the solver sees it, at a perturbed state.
     step(sim);
-    z.resize(sim.problem.dof_count());
+    z.resize(sim.workspace->problem.dof_count());
     z.head(sim.x.size()) = sim.x;
     z[sim.x.size()] = sim.ceiling_y;
     std::mt19937 rng(5);
@@ -107,11 +108,11 @@ TEST(ParallelAssembly, BitIdenticalForAnyThreadCount) {
   for (int threads : {1, 2, 3, 4}) {
     set_thread_count(threads);
     VecX g;
-    SparseHessian h = p.sim.workspace.hessian;
-    ip_gradient_hessian(p.sim.problem, p.z, g, h);
+    SparseHessian h = p.sim.workspace->newton.hessian;
+    ip_gradient_hessian(p.sim.workspace->problem, p.z, g, h);
     gradients.push_back(g);
     values.push_back(Eigen::Map<const VecX>(h.matrix.valuePtr(), h.matrix.nonZeros()));
-    energies.push_back(ip_energy(p.sim.problem, p.z));
+    energies.push_back(ip_energy(p.sim.workspace->problem, p.z));
   }
   set_thread_count(0);
   for (std::size_t k = 1; k < gradients.size(); ++k) {

@@ -10,6 +10,7 @@
 
 #include "potential/incremental_potential.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
@@ -26,16 +27,17 @@ struct System {
     s.linear_solver = LinearSolverKind::Ldlt;
     sim = make_simulation(s);
     for (int k = 0; k < steps; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);
-    VecX z(sim.problem.dof_count());
+    VecX z(sim.workspace->problem.dof_count());
     z.head(sim.x.size()) = sim.x + perturb * s.h * sim.v;  // part of a step ahead: not the minimum
     z[sim.x.size()] = sim.ceiling_y;
-    ip_gradient_hessian(sim.problem, z, g, sim.workspace.hessian);
-    H = sim.workspace.hessian.matrix;
+    ip_gradient_hessian(sim.workspace->problem, z, g, sim.workspace->newton.hessian);
+    H = sim.workspace->newton.hessian.matrix;
     b = -g;
-    lambda_min = sim.workspace.min_node_mass;
-    if (sim.problem.ceiling_on)
-      lambda_min =
-          std::min(lambda_min, sim.problem.ceiling_fixed ? 1.0 : sim.problem.ceiling_stiffness);
+    lambda_min = sim.workspace->newton.min_node_mass;
+    if (sim.workspace->problem.ceiling.on)
+      lambda_min = std::min(lambda_min, sim.workspace->problem.ceiling_penalty.fixed
+                                            ? 1.0
+                                            : sim.workspace->problem.ceiling_penalty.stiffness);
   }
 };
 
@@ -117,11 +119,11 @@ TEST(Pcg, ReusesOneFactorisationAcrossNearbySystems) {
   const int solves = 10;
   for (int k = 0; k < solves; ++k) {
     ASSERT_EQ(step(sys.sim).status, StepStatus::Ok);
-    VecX z(sys.sim.problem.dof_count()), g;
+    VecX z(sys.sim.workspace->problem.dof_count()), g;
     z.head(sys.sim.x.size()) = sys.sim.x;
     z[sys.sim.x.size()] = sys.sim.ceiling_y;
-    ip_gradient_hessian(sys.sim.problem, z, g, sys.sim.workspace.hessian);
-    const Eigen::SparseMatrix<double>& H = sys.sim.workspace.hessian.matrix;
+    ip_gradient_hessian(sys.sim.workspace->problem, z, g, sys.sim.workspace->newton.hessian);
+    const Eigen::SparseMatrix<double>& H = sys.sim.workspace->newton.hessian.matrix;
     const VecX b = -g;
     SolveRequest request;
     request.forcing = 1e-2;  // Newton's forcing term (relative model decrease of a CG step)

@@ -12,6 +12,7 @@
 #include "potential/incremental_potential.h"
 #include "scene/scene.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
@@ -30,10 +31,10 @@ SceneDef compress(int n_seg, bool safeguards) {
 // |p|_inf / h for p = -H^-1 g at the state the last step returned (its own problem:
 // x_tilde, friction weights and ceiling state of that step).
 double exact_residual(const Simulation& sim) {
-  const StepProblem& p = sim.problem;
-  SparseHessian hess = build_sparse_hessian(sim.mesh, p.ceiling_on);
+  const StepProblem& p = sim.workspace->problem;
+  SparseHessian hess = build_sparse_hessian(sim.mesh, p.ceiling.on);
   VecX g;
-  ip_gradient_hessian(p, sim.z, g, hess);
+  ip_gradient_hessian(p, sim.workspace->z, g, hess);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(hess.matrix);
   EXPECT_EQ(ldlt.info(), Eigen::Success);
   const VecX dir = ldlt.solve(-g);
