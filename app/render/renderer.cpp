@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
+#include <initializer_list>
 #include <utility>
 
 #include "app/colormap.h"
@@ -140,6 +142,27 @@ GLuint build_program(const GlApi& gl, const char* name, const char* vertex, cons
   return program;
 }
 
+// One float vertex attribute: its location, component count and offset in the vertex.
+struct VertexAttribute {
+  GLuint index;
+  GLint size;
+  size_t offset;
+};
+
+// A vertex array over a new buffer of vertices `stride` bytes apart; leaves both bound.
+void make_vertex_array(const GlApi& gl, GLuint* vao, GLuint* vbo, size_t stride,
+                       std::initializer_list<VertexAttribute> attributes) {
+  gl.GenVertexArrays(1, vao);
+  gl.GenBuffers(1, vbo);
+  gl.BindVertexArray(*vao);
+  gl.BindBuffer(GL_ARRAY_BUFFER, *vbo);
+  for (const VertexAttribute& a : attributes) {
+    gl.EnableVertexAttribArray(a.index);
+    gl.VertexAttribPointer(a.index, a.size, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(stride),
+                           reinterpret_cast<void*>(a.offset));
+  }
+}
+
 // Edges of a triangle list, each once, split into interior ones (two triangles) and the
 // boundary (one triangle).
 void mesh_edges(const std::vector<std::array<int, 3>>& triangles,
@@ -182,8 +205,8 @@ struct GlResources {
   Shapes shapes, hatched;
   std::vector<TextVertex> text;
   std::vector<GlyphQuad> glyphs;
-  // The mesh's edges, and the triangles they were found from: the sort is redone only
-  // when the mesh changes (every frame of a 64x64 mesh it would cost ~0.4 ms).
+  // The mesh's edges, and the triangles they were found from: the sort of every edge is
+  // redone only when the mesh changes, not every frame.
   std::vector<std::pair<int, int>> interior_edges, boundary_edges;
   std::vector<std::array<int, 3>> edges_of;
 
@@ -335,32 +358,14 @@ std::unique_ptr<Renderer> Renderer::create(GlGetProcAddress get_proc_address, in
 
   GLint previous_vao = 0;
   gl.GetIntegerv(GL_VERTEX_ARRAY_BINDING, &previous_vao);
-  gl.GenVertexArrays(1, &res.shape_vao);
-  gl.GenBuffers(1, &res.shape_vbo);
-  gl.BindVertexArray(res.shape_vao);
-  gl.BindBuffer(GL_ARRAY_BUFFER, res.shape_vbo);
-  gl.EnableVertexAttribArray(0);
-  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
-                         reinterpret_cast<void*>(offsetof(ShapeVertex, x)));
-  gl.EnableVertexAttribArray(1);
-  gl.VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
-                         reinterpret_cast<void*>(offsetof(ShapeVertex, c)));
-  gl.EnableVertexAttribArray(2);
-  gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(ShapeVertex),
-                         reinterpret_cast<void*>(offsetof(ShapeVertex, across)));
-  gl.GenVertexArrays(1, &res.text_vao);
-  gl.GenBuffers(1, &res.text_vbo);
-  gl.BindVertexArray(res.text_vao);
-  gl.BindBuffer(GL_ARRAY_BUFFER, res.text_vbo);
-  gl.EnableVertexAttribArray(0);
-  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(TextVertex),
-                         reinterpret_cast<void*>(offsetof(TextVertex, x)));
-  gl.EnableVertexAttribArray(1);
-  gl.VertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(TextVertex),
-                         reinterpret_cast<void*>(offsetof(TextVertex, u)));
-  gl.EnableVertexAttribArray(2);
-  gl.VertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(TextVertex),
-                         reinterpret_cast<void*>(offsetof(TextVertex, c)));
+  make_vertex_array(gl, &res.shape_vao, &res.shape_vbo, sizeof(ShapeVertex),
+                    {{0, 2, offsetof(ShapeVertex, x)},
+                     {1, 4, offsetof(ShapeVertex, c)},
+                     {2, 2, offsetof(ShapeVertex, across)}});
+  make_vertex_array(gl, &res.text_vao, &res.text_vbo, sizeof(TextVertex),
+                    {{0, 2, offsetof(TextVertex, x)},
+                     {1, 2, offsetof(TextVertex, u)},
+                     {2, 4, offsetof(TextVertex, c)}});
   gl.BindVertexArray(static_cast<GLuint>(previous_vao));
   gl.BindBuffer(GL_ARRAY_BUFFER, 0);
   gl.GenTextures(1, &res.atlas_texture);
@@ -462,44 +467,48 @@ FrameState capture_frame_state(const Simulation& sim, const std::vector<double>*
   return f;
 }
 
-void Renderer::draw(const FrameState& state, const DrawOptions& options) {
-  GlResources& res = *gl_;
-  const GlApi& gl = res.gl;
-  const FrameLayout L = frame_layout(width_, height_, options.panel);
-  const double s = L.scale;
-  const SceneDef& scene = state.scene;
-  const Camera cam = options.camera ? *options.camera : scene_camera(scene, L);
-  res.shapes.clear();
-  res.hatched.clear();
-  res.text.clear();
+// det F over a frame's triangles: the extremes and how many are inverted (det F <= 0).
+struct DetFSummary {
+  double lo = 1.0, hi = 1.0;
+  int inverted = 0;
+};
 
-  // --- The world, clipped to the plot area.
+static DetFSummary summarize_det_f(const FrameState& state) {
+  DetFSummary d;
+  for (size_t t = 0; t < state.triangles.size(); ++t) {
+    const double v = t < state.det_f.size() ? state.det_f[t] : 1.0;
+    if (t == 0) d.lo = d.hi = v;
+    d.lo = std::min(d.lo, v);
+    d.hi = std::max(d.hi, v);
+    if (!(v > 0.0)) ++d.inverted;
+  }
+  return d;
+}
+
+// Each plane: a filled half-plane whose surface layer is hatched (res.hatched; the drawing
+// convention for a rigid support), so that a large ceiling does not fill the picture with
+// stripes; the rest of the half-plane is a plain fill (res.shapes).
+static void add_plane_fills(GlResources& res, const FrameLayout& L, const Camera& cam,
+                            const FrameState& state) {
   const double px0 = L.plot.x, px1 = L.plot.x + L.plot.w, py0 = L.plot.y, py1 = L.plot.y + L.plot.h;
-  const double plane_line = std::max(1.5, 2.5 * s);
-  Shapes& world = res.shapes;
-  // Each plane: a filled half-plane whose surface layer is hatched (the drawing
-  // convention for a rigid support), so that a large ceiling does not fill the picture
-  // with stripes.
-  const double band = std::round(std::max(10.0, 30.0 * s));
-  if (scene.has_ground) {
-    const double gy = cam.to_pixel(Vec2(0.0, scene.ground_y)).y();
+  const double band = std::round(std::max(10.0, 30.0 * L.scale));
+  if (state.scene.has_ground) {
+    const double gy = cam.to_pixel(Vec2(0.0, state.scene.ground_y)).y();
     const double y_end = std::max(gy, py1), y_band = std::min(gy + band, y_end);
     add_rect(res.hatched, px0, gy, px1, y_band, kPlaneFill);
-    add_rect(world, px0, y_band, px1, y_end, kPlaneFill);
+    add_rect(res.shapes, px0, y_band, px1, y_end, kPlaneFill);
   }
-  if (scene.has_ceiling) {
+  if (state.scene.has_ceiling) {
     const double cy = cam.to_pixel(Vec2(0.0, state.ceiling_y)).y();
     const double y_end = std::min(py0, cy), y_band = std::max(cy - band, y_end);
     add_rect(res.hatched, px0, y_band, px1, cy, kPlaneFill);
-    add_rect(world, px0, y_end, px1, y_band, kPlaneFill);
+    add_rect(res.shapes, px0, y_end, px1, y_band, kPlaneFill);
   }
-  const int nodes = static_cast<int>(state.x.size() / 2);
-  std::vector<Vec2> p(static_cast<size_t>(nodes));
-  for (int i = 0; i < nodes; ++i) p[i] = cam.to_pixel(Vec2(state.x[2 * i], state.x[2 * i + 1]));
-  double det_lo = 1.0, det_hi = 1.0;
-  int inverted = 0;
-  // Inverted triangles last: they overlap their neighbours (they are folded over), and
-  // drawn first they would be hidden under them.
+}
+
+// Every triangle filled with its det F colour; inverted triangles last: they overlap their
+// neighbours (they are folded over), and drawn first they would be hidden under them.
+static void add_mesh_fills(Shapes& world, const std::vector<Vec2>& p, const FrameState& state) {
   for (const bool inverted_pass : {false, true}) {
     for (size_t t = 0; t < state.triangles.size(); ++t) {
       const double d = t < state.det_f.size() ? state.det_f[t] : 1.0;
@@ -508,57 +517,79 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
       add_triangle(world, p[tri[0]], p[tri[1]], p[tri[2]], rgba(det_f_color(d)));
     }
   }
-  for (size_t t = 0; t < state.triangles.size(); ++t) {
-    const double d = t < state.det_f.size() ? state.det_f[t] : 1.0;
-    if (t == 0) det_lo = det_hi = d;
-    det_lo = std::min(det_lo, d);
-    det_hi = std::max(det_hi, d);
-    if (!(d > 0.0)) ++inverted;
-  }
-  const size_t world_fills = world.size();  // opaque so far; the strokes below blend
+}
+
+// The antialiased strokes over the fills: the mesh's interior edges (when `edges`), the
+// body's outline and the planes' surfaces.
+static void add_strokes(GlResources& res, const FrameLayout& L, const Camera& cam,
+                        const FrameState& state, const std::vector<Vec2>& p, bool edges) {
+  const double s = L.scale, px0 = L.plot.x, px1 = L.plot.x + L.plot.w;
+  Shapes& world = res.shapes;
   if (state.triangles != res.edges_of) {
     mesh_edges(state.triangles, &res.interior_edges, &res.boundary_edges);
     res.edges_of = state.triangles;
   }
-  if (options.edges) {
+  if (edges) {
     const double w = std::max(1.0, 1.1 * s);
     for (const auto& [a, b] : res.interior_edges) add_segment(world, p[a], p[b], w, kMeshEdge);
   }
   const double outline = std::max(1.25, 1.8 * s);
   for (const auto& [a, b] : res.boundary_edges) add_segment(world, p[a], p[b], outline, kOutline);
-  if (scene.has_ground) {
-    const double gy = cam.to_pixel(Vec2(0.0, scene.ground_y)).y();
+  const double plane_line = std::max(1.5, 2.5 * s);
+  if (state.scene.has_ground) {
+    const double gy = cam.to_pixel(Vec2(0.0, state.scene.ground_y)).y();
     add_segment(world, {px0 - 10, gy + 0.5 * plane_line}, {px1 + 10, gy + 0.5 * plane_line},
                 plane_line, kPlaneEdge);
   }
-  if (scene.has_ceiling) {
+  if (state.scene.has_ceiling) {
     const double cy = cam.to_pixel(Vec2(0.0, state.ceiling_y)).y();
     add_segment(world, {px0 - 10, cy - 0.5 * plane_line}, {px1 + 10, cy - 0.5 * plane_line},
                 plane_line, kPlaneEdge);
   }
-  const size_t world_vertices = world.size();
+}
 
-  // --- The panel: words, numbers and the colour bar (same vertex list, not clipped).
-  const size_t panel_backdrop =
-      options.panel ? draw_panel(res, L, state, det_lo, det_hi, inverted) : world_vertices;
+// Where each layer of a frame lies in res.shapes: [0, world_fills) the world's opaque
+// fills, [world_fills, world_end) its strokes, [world_end, panel_backdrop) the panel's
+// opaque backdrop, [panel_backdrop, end) the panel's content.
+struct ShapeRanges {
+  size_t world_fills = 0, world_end = 0, panel_backdrop = 0;
+};
 
-  // --- GL: draw everything into the (multisampled) framebuffer, then resolve.
-  GLint previous_draw = 0, previous_read = 0, viewport[4] = {};
-  gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_draw);
-  gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous_read);
-  gl.GetIntegerv(GL_VIEWPORT, viewport);
-  const bool blend_was = gl.IsEnabled(GL_BLEND), scissor_was = gl.IsEnabled(GL_SCISSOR_TEST);
+// The GL state draw changes and restores: framebuffer bindings, viewport, blending, scissor.
+struct SavedGlState {
+  GLint draw = 0, read = 0, viewport[4] = {};
+  bool blend = false, scissor = false;
 
-  const GLuint output = options.framebuffer ? *options.framebuffer : res.resolve_fbo;
+  explicit SavedGlState(const GlApi& gl) {
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    gl.GetIntegerv(GL_VIEWPORT, viewport);
+    blend = gl.IsEnabled(GL_BLEND);
+    scissor = gl.IsEnabled(GL_SCISSOR_TEST);
+  }
+  void restore(const GlApi& gl) const {
+    if (!blend) gl.Disable(GL_BLEND);
+    if (scissor) gl.Enable(GL_SCISSOR_TEST);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+    gl.Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  }
+};
+
+// Draws the vertex lists into `output` (through the multisampled framebuffer when there is
+// one): opaque fills first and without blending (alpha 1: blending would change no pixel,
+// but a software rasterizer would read each one back), then the antialiased strokes and
+// the text blended over them; the world clipped to the plot area.
+static void draw_vertices(GlResources& res, const FrameLayout& L, const ShapeRanges& r,
+                          GLuint output) {
+  const GlApi& gl = res.gl;
+  const double s = L.scale;
   const GLuint target = res.draw_fbo ? res.draw_fbo : output;
   gl.BindFramebuffer(GL_FRAMEBUFFER, target);
   gl.Viewport(0, 0, L.width, L.height);
   gl.Disable(GL_SCISSOR_TEST);
   gl.ClearColor(kPlotBackground.r, kPlotBackground.g, kPlotBackground.b, kPlotBackground.a);
   gl.Clear(GL_COLOR_BUFFER_BIT);
-  // Opaque fills first and without blending (alpha 1: blending would change no pixel, but a
-  // software rasterizer would read each one back). The antialiased strokes and the text
-  // blend over them.
   gl.Disable(GL_BLEND);
   gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
@@ -571,9 +602,10 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   const auto clip_to_plot = [&](bool on) {
     if (!on) return gl.Disable(GL_SCISSOR_TEST);
     gl.Enable(GL_SCISSOR_TEST);
-    gl.Scissor(
-        static_cast<GLint>(std::lround(L.plot.x)), static_cast<GLint>(std::lround(L.height - py1)),
-        static_cast<GLsizei>(std::lround(L.plot.w)), static_cast<GLsizei>(std::lround(L.plot.h)));
+    gl.Scissor(static_cast<GLint>(std::lround(L.plot.x)),
+               static_cast<GLint>(std::lround(L.height - (L.plot.y + L.plot.h))),
+               static_cast<GLsizei>(std::lround(L.plot.w)),
+               static_cast<GLsizei>(std::lround(L.plot.h)));
   };
   clip_to_plot(true);
   // The hatched bands of the planes (opaque).
@@ -590,17 +622,17 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
                 res.shapes.data(), GL_STREAM_DRAW);
   gl.UseProgram(res.fill_program);
   gl.Uniform2f(res.fill_frame_size, float(L.width), float(L.height));
-  draw_range(0, world_fills);
+  draw_range(0, r.world_fills);
   clip_to_plot(false);
-  draw_range(world_vertices, panel_backdrop);
+  draw_range(r.world_end, r.panel_backdrop);
   // The antialiased strokes over the world's fills, and the panel's content.
   gl.UseProgram(res.shape_program);
   gl.Uniform4f(res.shape_hatch, 1.0f, 0.0f, 0.0f, 0.0f);
   gl.Enable(GL_BLEND);
   clip_to_plot(true);
-  draw_range(world_fills, world_vertices);
+  draw_range(r.world_fills, r.world_end);
   clip_to_plot(false);
-  draw_range(panel_backdrop, res.shapes.size());
+  draw_range(r.panel_backdrop, res.shapes.size());
 
   gl.UseProgram(res.text_program);
   gl.Uniform2f(res.text_frame_size, float(L.width), float(L.height));
@@ -620,16 +652,37 @@ void Renderer::draw(const FrameState& state, const DrawOptions& options) {
     gl.BlitFramebuffer(0, 0, L.width, L.height, 0, 0, L.width, L.height, GL_COLOR_BUFFER_BIT,
                        GL_NEAREST);
   }
-
   gl.BindTexture(GL_TEXTURE_2D, 0);
   gl.BindBuffer(GL_ARRAY_BUFFER, 0);
   gl.BindVertexArray(0);
   gl.UseProgram(0);
-  if (!blend_was) gl.Disable(GL_BLEND);
-  if (scissor_was) gl.Enable(GL_SCISSOR_TEST);
-  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_draw));
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
-  gl.Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+}
+
+void Renderer::draw(const FrameState& state, const DrawOptions& options) {
+  GlResources& res = *gl_;
+  const FrameLayout L = frame_layout(width_, height_, options.panel);
+  const Camera cam = options.camera ? *options.camera : scene_camera(state.scene, L);
+  res.shapes.clear();
+  res.hatched.clear();
+  res.text.clear();
+
+  // The world (clipped to the plot area when drawn), then the panel (not clipped).
+  const int nodes = static_cast<int>(state.x.size() / 2);
+  std::vector<Vec2> p(static_cast<size_t>(nodes));
+  for (int i = 0; i < nodes; ++i) p[i] = cam.to_pixel(Vec2(state.x[2 * i], state.x[2 * i + 1]));
+  add_plane_fills(res, L, cam, state);
+  add_mesh_fills(res.shapes, p, state);
+  ShapeRanges ranges;
+  ranges.world_fills = res.shapes.size();
+  add_strokes(res, L, cam, state, p, options.edges);
+  ranges.world_end = res.shapes.size();
+  const DetFSummary det = summarize_det_f(state);
+  ranges.panel_backdrop =
+      options.panel ? draw_panel(res, L, state, det.lo, det.hi, det.inverted) : ranges.world_end;
+
+  const SavedGlState saved(res.gl);
+  draw_vertices(res, L, ranges, options.framebuffer ? *options.framebuffer : res.resolve_fbo);
+  saved.restore(res.gl);
 }
 
 void Renderer::read_pixels(std::vector<std::uint8_t>* rgba) const {
