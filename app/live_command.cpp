@@ -3,7 +3,6 @@
 // suggesting `invfree render` or xvfb-run and exits with code 4 (the window, its output,
 // could not be opened).
 #include <cstdio>
-#include <memory>
 
 #include "app/cli_checks.h"
 #include "app/command.h"

@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <initializer_list>
-#include <utility>
 
-#include "app/colormap.h"
 #include "app/render/frame_vertices.h"
 #include "app/render/gl_api.h"
 #include "app/render/shader_sources.h"

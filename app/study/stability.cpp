@@ -1,7 +1,6 @@
 #include "app/study/stability.h"
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "app/format_number.h"
