@@ -1,4 +1,4 @@
-// Process exit codes of every invfree command (documented in --help and the README).
+// Process exit codes of every invfree command (documented in `invfree --help`).
 #pragma once
 
 namespace invfree::exit_code {

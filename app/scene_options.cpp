@@ -4,13 +4,13 @@
 
 namespace invfree {
 
-void SceneOptions::add_to(CLI::App* cmd) {
+void SceneOptions::add_to(CLI::App* cmd, const std::string& scene_what,
+                          const std::string& set_what) {
   std::string names;
   for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
-  cmd->add_option("--scene", scene, "built-in scene (" + names + ") or a TOML scene file")
+  cmd->add_option("--scene", scene, scene_what + " (" + names + ") or a TOML scene file")
       ->capture_default_str();
-  cmd->add_option("--set", overrides,
-                  "override a scene value, e.g. --set material.E=1e4 (repeatable)")
+  cmd->add_option("--set", overrides, set_what + ", e.g. --set material.E=1e4 (repeatable)")
       ->type_name("SECTION.KEY=VALUE");
 }
 

@@ -157,8 +157,8 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --set gravity.g=1", "gravity.g: expected an array of two numbers"},
       {"simulate --obj " + dir,
        dir + ": directory is not empty (use --force to write into it anyway)"},
-      // An empty path is bad input for every output option (study and stability used to
-      // write their files at the filesystem root).
+      // An empty path is bad input for every output option (not "" + "/study.csv", a file
+      // at the filesystem root).
       {"simulate --obj ''", "--obj: empty path"},
       {"simulate --csv ''", "--csv: empty path"},
       {"render --out ''", "--out: empty path"},

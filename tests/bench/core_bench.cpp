@@ -134,7 +134,8 @@ BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 // step (the solver's ordering and split): the kernel PCG repeats once per iteration. A
 // solve's work and memory traffic depend on the pattern alone, not on the values, so
 // the first step's Hessian times it as well as a compressed one and takes a second
-// instead of the 120 steps (~40 s at n_seg 256) that `compressed` needs.
+// instead of the 120 steps that `compressed` needs (about 40 s at n_seg 256:
+// `invfree bench --sizes 256 --steps 120`).
 // float:1 reads L rounded to float, as PCG does from kFloatPreconditionerMinEntries.
 // Items: entries of L.
 void BM_LdltSolve(benchmark::State& state) {

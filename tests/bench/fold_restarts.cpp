@@ -4,7 +4,8 @@
 // moved by at most eps / 2, a fixed pseudo-random pattern), each time up to step `to`,
 // printing the Newton iterations (total and worst step) and the mean ms per step.
 // Every restart begins with a fresh factorisation, so even the unperturbed one is a draw
-// of its own. Used for n_seg 256's fold steps (README, Performance: "What is left"):
+// of its own. For n_seg 256's fold steps (near step 250, where Newton takes the most
+// iterations: `invfree bench --sizes 256` reports the worst step):
 //   build/release/tests/bench/invfree_fold_restarts 256 225 265 1e-12 2e-12 3e-12
 // Not a test: it takes minutes at n_seg 256 and asserts nothing.
 #include <algorithm>

@@ -164,7 +164,7 @@ TEST(Overrides, ApplyAndValidate) {
   EXPECT_NE(apply_override(drop, "ground.y=0").find("through the ground"), std::string::npos);
 }
 
-// ---- exhaustive bad input (issue 7) ---------------------------------------------------
+// ---- exhaustive bad input -------------------------------------------------------------
 // Every check below asserts the whole contract: the load fails, the error is one line,
 // it starts with "<file>:<line>: <section.key>: " and says what is wrong.
 

@@ -109,7 +109,7 @@ namespace {
 
 // The ceiling's penalty starts each step strong enough to hold the ceiling against the
 // push the body gave it in the last step (core/simulation.cpp): once the ceiling
-// presses on the body, Newton no longer re-doubles k from the demo's small start.
+// presses on the body, Newton does not re-double k from a small start as the demo does.
 int doublings_after_contact(SceneDef scene, int steps) {
   Simulation sim = make_simulation(scene);
   int after = 0;
