@@ -10,6 +10,7 @@
 #include "app/exit_codes.h"
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 
 namespace invfree {
@@ -28,7 +29,7 @@ struct LiveCommandOptions {
 // --scene one is selected and gets the --set overrides.
 int build_scenes(const LiveCommandOptions& opt, live::LiveOptions* out) {
   std::vector<std::string> names;
-  for (const auto& e : builtin_scenes()) names.push_back(e.name);
+  for (const auto& e : builtin_scenes()) names.emplace_back(e.name);
   auto add = [&](const std::string& n) {
     for (size_t i = 0; i < names.size(); ++i)
       if (names[i] == n) return static_cast<int>(i);
@@ -89,10 +90,9 @@ void register_live_command(CLI::App& app, int& exit_code) {
                                      "interactive window: the running simulation with sliders for "
                                      "mu and lambda (the default command "
                                      "when a display is available)");
-  std::string names;
-  for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
-  cmd->add_option("--scene", opt->scene,
-                  "scene to start with: built-in (" + names + ") or a TOML scene file")
+  cmd->add_option(
+         "--scene", opt->scene,
+         "scene to start with: built-in (" + builtin_scene_names() + ") or a TOML scene file")
       ->capture_default_str();
   cmd->add_option("scene_files", opt->scene_files, "more TOML scene files for the scene picker")
       ->type_name("FILE ...");

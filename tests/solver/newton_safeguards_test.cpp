@@ -11,13 +11,14 @@
 
 #include "potential/incremental_potential.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 
 namespace invfree {
 namespace {
 
 SceneDef compress(int n_seg, bool safeguards, bool crossing_stop) {
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   s.n_seg = n_seg;
   s.step_expansion = safeguards;
   s.friction_crossing_stop = crossing_stop;
