@@ -26,6 +26,7 @@
 #include "app/plot/loglog_fit.h"
 #include "app/scene_options.h"
 #include "linalg/parallel.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 
 namespace invfree {
@@ -186,7 +187,7 @@ constexpr int kReferenceNseg[3] = {4, 8, 16};
 
 // True when `scene` is the built-in `compress` (any n_seg): the reference applies.
 bool is_reference_scene(SceneDef scene) {
-  const auto compress = find_builtin_scene("compress");
+  const auto compress = load_builtin_scene("compress").scene;
   scene.n_seg = compress->n_seg;
   return scene == *compress;
 }

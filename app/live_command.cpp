@@ -11,6 +11,7 @@
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
 #include "app/scene_options.h"
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 
 namespace invfree {
@@ -28,7 +29,7 @@ struct LiveCommandOptions {
 // --scene one is selected and gets the --set overrides.
 int build_scenes(const LiveCommandOptions& opt, live::LiveOptions* out) {
   std::vector<std::string> names;
-  for (const auto& e : builtin_scenes()) names.push_back(e.name);
+  for (const auto& e : builtin_scenes()) names.emplace_back(e.name);
   auto add = [&](const std::string& n) {
     for (size_t i = 0; i < names.size(); ++i)
       if (names[i] == n) return static_cast<int>(i);

@@ -1,14 +1,13 @@
 #include "app/scene_options.h"
 
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 
 namespace invfree {
 
 void SceneOptions::add_to(CLI::App* cmd, const std::string& scene_what,
                           const std::string& set_what) {
-  std::string names;
-  for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
-  cmd->add_option("--scene", scene, scene_what + " (" + names + ") or a TOML scene file")
+  cmd->add_option("--scene", scene, scene_what + " (" + builtin_scene_names() + ") or a TOML scene file")
       ->capture_default_str();
   cmd->add_option("--set", overrides, set_what + ", e.g. --set material.E=1e4 (repeatable)")
       ->type_name("SECTION.KEY=VALUE");

@@ -5,10 +5,15 @@
 #include <limits>
 
 #include "invfree.h"
+#include "scene_io/builtin_scenes.h"
 
 int main() {
-  invfree::SceneDef scene = *invfree::find_builtin_scene("compress");
-  invfree::Simulation sim = invfree::make_simulation(scene);
+  const invfree::SceneLoad scene = invfree::load_builtin_scene("compress");
+  if (!scene.scene) {
+    std::fprintf(stderr, "%s\n", scene.error.c_str());
+    return 1;
+  }
+  invfree::Simulation sim = invfree::make_simulation(*scene.scene);
   double min_det_f = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 100; ++k) {
     invfree::StepReport report = invfree::step(sim);

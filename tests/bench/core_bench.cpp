@@ -20,6 +20,7 @@
 #include "potential/incremental_potential.h"
 #include "potential/self_contact_barrier.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 #include "solver/ccd.h"
 #include "tests/scene/body_fixtures.h"
@@ -100,7 +101,7 @@ BENCHMARK(BM_FusedGradientHessian<StableNeoHookean>);
 
 // A `compress` simulation at n_seg = n run into its compression phase (step 120).
 Simulation compressed(int n_seg) {
-  SceneDef scene = *find_builtin_scene("compress");
+  SceneDef scene = *load_builtin_scene("compress").scene;
   scene.n_seg = n_seg;
   Simulation sim = make_simulation(scene);
   for (int k = 0; k < 120; ++k) step(sim);
@@ -144,7 +145,7 @@ BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 // float:1 reads L rounded to float, as PCG does from kFloatPreconditionerMinEntries.
 // Items: entries of L.
 void BM_LdltSolve(benchmark::State& state) {
-  SceneDef scene = *find_builtin_scene("compress");
+  SceneDef scene = *load_builtin_scene("compress").scene;
   scene.n_seg = static_cast<int>(state.range(0));
   Simulation sim = make_simulation(scene);
   step(sim);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 
 using namespace invfree;
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
   std::vector<double> eps{0.0};
   for (int i = 4; i < argc; ++i) eps.push_back(std::atof(argv[i]));
 
-  SceneDef scene = *find_builtin_scene("compress");
+  SceneDef scene = *load_builtin_scene("compress").scene;
   scene.n_seg = n_seg;
   if (const std::string error = validate_scene(scene); !error.empty()) {
     std::fprintf(stderr, "n_seg %d: %s\n", n_seg, error.c_str());

@@ -11,6 +11,7 @@
 #include "material/models.h"
 #include "material/triangle_elasticity.h"
 #include "potential/incremental_potential.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 #include "solver/step_workspace.h"
 #include "tests/test_support.h"
@@ -85,7 +86,7 @@ struct Problem {
   Simulation sim;
   VecX z;
   explicit Problem(int n_seg) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = n_seg;
     sim = make_simulation(s);
     for (int k = 0; k < 120; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);
@@ -129,7 +130,7 @@ TEST(ParallelAssembly, BitIdenticalForAnyThreadCount) {
 TEST(ParallelAssembly, WholeRunBitIdenticalForAnyThreadCount) {
   auto run = [](int threads) {
     set_thread_count(threads);
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = 40;  // 3200 triangles: parallel assembly and PCG products
     Simulation sim = make_simulation(s);
     for (int k = 0; k < 150; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "potential/incremental_potential.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 #include "solver/step_workspace.h"
 
@@ -22,7 +23,7 @@ struct System {
   VecX g, b;
   double lambda_min = 0.0;
   explicit System(int n_seg, int steps = 150, double perturb = 0.0) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = n_seg;
     s.linear_solver = LinearSolverKind::Ldlt;
     sim = make_simulation(s);
@@ -148,7 +149,7 @@ double max_speed(const Simulation& sim) {
 TEST(Simulation, EveryLinearSolverKeepsTheInvariantsAndComesToRest) {
   for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Ldlt,
                                 LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = 10;
     s.linear_solver = kind;
     Simulation sim = make_simulation(s);
@@ -176,7 +177,7 @@ TEST(Simulation, ExactHessianRunsWithEverySolverThatAcceptsIt) {
   // Projection "none" may give an indefinite Hessian: auto uses LDL^T; a forced PCG falls
   // back to its factorisation when CG meets negative curvature.
   for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Pcg}) {
-    SceneDef s = *find_builtin_scene("drop");
+    SceneDef s = *load_builtin_scene("drop").scene;
     s.projection = HessianProjection::None;
     s.n_seg = 6;
     s.linear_solver = kind;

@@ -8,6 +8,7 @@
 
 #include "app/live/live_controller.h"
 #include "potential/incremental_potential.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 #include "solver/step_workspace.h"
 #include "tests/test_support.h"
@@ -101,7 +102,7 @@ TEST(PullSpring, AddsExactlyItsOwnTerm) {
 }
 
 TEST(PullSpring, PullsANodeOnlyWhileOn) {
-  SceneDef s = *find_builtin_scene("drop");
+  SceneDef s = *load_builtin_scene("drop").scene;
   Simulation pulled = make_simulation(s), free = make_simulation(s);
   const int node = s.n_seg * (s.n_seg + 1) + s.n_seg;  // the top right corner
   const Vec2 start = pulled.x.segment<2>(2 * node);
@@ -129,7 +130,7 @@ TEST(PullSpring, PullsANodeOnlyWhileOn) {
 }
 
 TEST(PullSpring, TheControllerGrabsAndReleases) {
-  live::LiveController lc({{"compress", *find_builtin_scene("compress")}}, 0);
+  live::LiveController lc({{"compress", *load_builtin_scene("compress").scene}}, 0);
   const int node = 2;  // bottom row
   const Vec2 start = lc.simulation().x.segment<2>(2 * node);
   lc.begin_pull(node, start + Vec2(-0.6, 0.3));

@@ -18,6 +18,7 @@
 
 #include "potential/incremental_potential.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 #include "solver/step_workspace.h"
 
@@ -83,7 +84,7 @@ std::string broken_invariant(const Simulation& sim) {
 
 TEST(Soak, TenThousandStepsWithChangingParameters) {
   constexpr int kSteps = 10000, kEvery = 50;
-  Simulation sim = make_simulation(*find_builtin_scene("compress"));
+  Simulation sim = make_simulation(*load_builtin_scene("compress").scene);
   ASSERT_EQ(sim.scene.model, Model::NeoHookean);
   Script script{20240607};
   long violations = 0, changes = 0, newton_iterations = 0;

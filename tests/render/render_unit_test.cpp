@@ -10,6 +10,7 @@
 #include "app/render/frame_writer.h"
 #include "app/render/text_atlas.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "tests/render/image_compare.h"
 
 namespace invfree::render {
@@ -45,7 +46,7 @@ TEST(FrameText, ColorBarTicksArePowersOfTwoOnTheColormapScale) {
 }
 
 TEST(Camera, FixedPerSceneAndHoldsPlanesAndSquashedSquare) {
-  const SceneDef s = *find_builtin_scene("compress");
+  const SceneDef s = *load_builtin_scene("compress").scene;
   const WorldBox box = scene_world_box(s);
   EXPECT_LT(box.y0, s.ground_y);
   EXPECT_GT(box.y1, s.ceiling_y);

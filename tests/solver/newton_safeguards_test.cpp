@@ -11,6 +11,7 @@
 
 #include "potential/incremental_potential.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 #include "solver/step_workspace.h"
 
@@ -18,7 +19,7 @@ namespace invfree {
 namespace {
 
 SceneDef compress(int n_seg, bool safeguards, bool crossing_stop) {
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   s.n_seg = n_seg;
   s.step_expansion = safeguards;
   s.friction_crossing_stop = crossing_stop;
