@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the web build (docs/web.md) needs on Debian 12, all from Debian's archive:
 #   - emscripten 3.1.6 and node-acorn (its JavaScript optimizer's parser);
-#   - chromium, chromium-driver and python3-selenium for the tests in a headless browser;
+#   - chromium, chromium-driver, python3-selenium and python3-pil for the tests in a
+#     headless browser (python3-pil compares the screenshot with its golden);
 #   - Dear ImGui's sources (Debian's source package `imgui`, 1.86, the version of
 #     libimgui-dev, which ships headers and an x86 library only): unpacked with
 #     `apt-get source` into build/web-deps/ (outside git; nothing is copied into the
@@ -13,7 +14,7 @@ cd "$(dirname "$0")/.."
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO="sudo"
 
-packages=(emscripten node-acorn dpkg-dev chromium chromium-driver python3-selenium)
+packages=(emscripten node-acorn dpkg-dev chromium chromium-driver python3-selenium python3-pil)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

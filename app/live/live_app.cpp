@@ -73,6 +73,9 @@ Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) 
 }  // namespace
 
 bool display_available() {
+#ifdef __EMSCRIPTEN__
+  return true;  // the browser's canvas
+#endif
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
   return (x && *x) || (w && *w);
@@ -339,6 +342,21 @@ struct LiveAppImpl {
     return image_from_bottom_up(read_window_bottom_up(), renderer->width(), renderer->height());
   }
 
+  // This frame's simulation steps (none when paused); frame() waits for them before it
+  // returns.
+  std::future<void> start_steps() {
+    if (!controller->playing()) return {};
+#ifdef __EMSCRIPTEN__
+    // The web page has no threads (-pthread would need cross-origin isolation headers from
+    // the server): the steps run here, on the main thread, before the picture is drawn;
+    // the n_seg slider's maximum keeps them within a frame (docs/web.md).
+    controller->advance_frame();
+    return {};
+#else
+    return std::async(std::launch::async, [this] { controller->advance_frame(); });
+#endif
+  }
+
   void frame(const Injection* inject, Image* capture) {
     activate();
     glfwPollEvents();
@@ -401,9 +419,7 @@ struct LiveAppImpl {
     // The next state is computed while this frame is drawn, rasterized and presented (the
     // GL work below reads only the copied state): on two cores the step and the renderer
     // (llvmpipe's rasterizer threads too) then overlap instead of queueing.
-    std::future<void> stepping;
-    if (controller->playing())
-      stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
+    std::future<void> stepping = start_steps();
     renderer->draw(state, draw_options);
     const int w = renderer->width(), h = renderer->height();
     // A recording holds each state once (from the initial one), not idle repeats.
@@ -492,8 +508,8 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   const bool software = renderer_name.find("llvmpipe") != std::string::npos ||
                         renderer_name.find("softpipe") != std::string::npos ||
                         renderer_name.find("swrast") != std::string::npos;
-  a.renderer =
-      render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, software ? 1 : 4);
+  const int samples = options.samples > 0 ? options.samples : (software ? 1 : 4);
+  a.renderer = render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, samples);
   if (!a.renderer) {
     *error = no_window_message("the renderer could not start: " + e);
     return nullptr;
@@ -527,7 +543,7 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
     return nullptr;
   }
   a.imgui_glfw = true;
-  if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
+  if (!ImGui_ImplOpenGL3_Init(a.gl.opengl_es ? "#version 300 es" : "#version 330 core")) {
     *error = no_window_message("ImGui's OpenGL3 backend could not start");
     return nullptr;
   }
