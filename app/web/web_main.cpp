@@ -6,9 +6,9 @@
 // Inputs: the page's URL query: paused=1 starts paused (the tests' first frame),
 // n_seg=N starts the first scene with that mesh (through the panel's own checks: an
 // out-of-range value is clamped with the panel's note), scene=NAME picks a built-in scene.
-// Outputs: the canvas, and `window.invfree` after every frame (frames, steps, min det F,
-// mu, lambda, n_seg, frames/s, the panel's widget rectangles, note, banner), read by the
-// tests in a headless browser (tests/web) and by anyone curious in the browser's console.
+// Outputs: the canvas, screenshots as downloads, and `window.invfree` after every frame (frames,
+// steps, min det F, mu, lambda, n_seg, frames/s, the panel's widget rectangles, note, banner), read
+// by the tests in a headless browser (tests/web) and by anyone curious in the browser's console.
 #include <GLFW/glfw3.h>
 #include <emscripten.h>
 
@@ -33,6 +33,7 @@ constexpr int kWebMaxSegments = 24;
 struct Page {
   std::unique_ptr<LiveApp> app;
   bool failed = false;
+  size_t messages_seen = 0;
   // frames/s over the last second, for window.invfree
   double fps_start_ms = 0.0, fps = 0.0;
   long fps_frames = 0;
@@ -165,6 +166,31 @@ void publish_state(Page& p) {
   // clang-format on
 }
 
+// The panel's Screenshot button (and Ctrl+P) writes a PNG into the page's in-memory file
+// system and says "screenshot: PATH"; the browser then downloads that file.
+void download_screenshots(Page& p) {
+  const auto& messages = p.app->messages();
+  const std::string prefix = "screenshot: ";
+  for (; p.messages_seen < messages.size(); ++p.messages_seen) {
+    const std::string& m = messages[p.messages_seen];
+    if (m.compare(0, prefix.size(), prefix) != 0) continue;
+    // clang-format off
+    EM_ASM({
+      const path = UTF8ToString($0);
+      const bytes = FS.readFile(path);
+      FS.unlink(path);
+      const link = document.createElement("a");
+      link.href = URL.createObjectURL(new Blob([bytes], {type: "image/png"}));
+      link.download = path.split("/").pop();
+      document.body.appendChild(link);
+      link.click();
+      link.remove();
+      setTimeout(() => URL.revokeObjectURL(link.href), 10000);
+    }, m.c_str() + prefix.size());
+    // clang-format on
+  }
+}
+
 // One animation frame. The app is opened in the first one, once the main loop exists
 // (GLFW's swap interval sets the main loop's timing, which needs a main loop).
 void page_frame(void* arg) {
@@ -184,6 +210,7 @@ void page_frame(void* arg) {
   }
   follow_browser_window();
   p.app->frame();
+  download_screenshots(p);
   publish_state(p);
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The web page (docs/web.md) in headless Chromium: it loads with no console error, the
 simulation advances (step count and min det F read from window.invfree), the mu slider
-changes mu and the picture, and the first frame matches its golden.
+changes mu and the picture, the first frame matches its golden, and the Screenshot button
+downloads a PNG of what the page shows.
 
 Usage: web_page_test.py PAGE_DIR GOLDEN_DIR OUT_DIR
   PAGE_DIR    the built page (build/web: index.html, index.js, index.wasm)
@@ -153,6 +154,39 @@ def test_mu_slider(driver, url):
           f"{reference['min_det_f']:.4f} -> {softer['min_det_f']:.4f}, {differing} pixels differ")
 
 
+def test_screenshot_download(driver, url, out_dir):
+    # The Screenshot button sits between Reset and Record on the panel's first row.
+    import tempfile
+    from PIL import Image
+    state = load(driver, url + "?paused=1")
+    downloads = tempfile.mkdtemp(prefix="invfree_web_downloads_")
+    driver.execute_cdp_cmd("Page.setDownloadBehavior", {"behavior": "allow", "downloadPath": downloads})
+    reset, record = state["widgets"]["reset"], state["widgets"]["record"]
+    click(driver, 0.5 * (reset[2] + record[0]), 0.5 * (reset[1] + reset[3]))
+    path = os.path.join(downloads, "invfree_0001.png")
+    deadline = time.monotonic() + 60
+    while not os.path.isfile(path) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    if not os.path.isfile(path):
+        fail(f"no download {path} after a click on Screenshot (found: {os.listdir(downloads)})")
+    time.sleep(0.5)  # the browser renames the finished download into place: let it settle
+    downloaded = Image.open(path).convert("RGB")
+    shown = screenshot(driver)
+    if downloaded.size != shown.size:
+        fail(f"the downloaded PNG is {downloaded.size}, the page {shown.size}")
+    # The right half (the body, the planes, the colour bar, the statistics): on the panel
+    # the button's hover and tooltip change between the click and the page's screenshot.
+    box = (WIDTH // 2, 0, WIDTH, HEIGHT)
+    differing, _ = differing_pixels(downloaded.crop(box), shown.crop(box))
+    if differing > int(0.001 * (WIDTH // 2) * HEIGHT):
+        os.makedirs(out_dir, exist_ok=True)
+        downloaded.save(os.path.join(out_dir, "screenshot_download.png"))
+        fail(f"the downloaded PNG differs from the page in {differing} pixels")
+    check_no_console_error(driver, "screenshot")
+    print(f"screenshot: downloaded {os.path.basename(path)}, {downloaded.size[0]}x{downloaded.size[1]}, "
+          f"{differing} pixels of its right half differ from the page's")
+
+
 def main():
     if len(sys.argv) != 4:
         print(__doc__)
@@ -167,10 +201,12 @@ def main():
     server = pd.PageServer(page_dir)
     driver = pd.open_browser(WIDTH, HEIGHT)
     failures = 0
+    tests = (("first frame", lambda: test_first_frame(driver, server.url, golden_dir, out_dir)),
+             ("advances", lambda: test_advances(driver, server.url)),
+             ("mu slider", lambda: test_mu_slider(driver, server.url)),
+             ("screenshot download", lambda: test_screenshot_download(driver, server.url, out_dir)))
     try:
-        for name, run in (("first frame", lambda: test_first_frame(driver, server.url, golden_dir, out_dir)),
-                          ("advances", lambda: test_advances(driver, server.url)),
-                          ("mu slider", lambda: test_mu_slider(driver, server.url))):
+        for name, run in tests:
             try:
                 run()
                 print(f"PASS {name}")
@@ -180,7 +216,7 @@ def main():
     finally:
         driver.quit()
         server.close()
-    print(f"{3 - failures} passed, {failures} failed")
+    print(f"{len(tests) - failures} passed, {failures} failed")
     return 1 if failures else 0
 
 
