@@ -75,10 +75,11 @@ Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) 
 bool display_available() {
 #ifdef __EMSCRIPTEN__
   return true;  // the browser's canvas
-#endif
+#else
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
   return (x && *x) || (w && *w);
+#endif
 }
 
 struct LiveAppImpl {
