@@ -194,7 +194,7 @@ def main():
     page_dir, golden_dir, out_dir = sys.argv[1:]
     missing = pd.missing_toolchain(page_dir)
     if missing:
-        print(f"SKIPPED: the web page tests need the web toolchain: {missing}")
+        print(f"SKIPPED: web page tests: {missing}")
         return pd.SKIP
     age_min = (time.time() - os.path.getmtime(os.path.join(page_dir, "index.wasm"))) / 60
     print(f"page: {page_dir} (index.wasm built {age_min:.0f} min ago)")
