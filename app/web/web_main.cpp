@@ -4,8 +4,9 @@
 // body the desktop's loop runs.
 //
 // Inputs: the page's URL query: paused=1 starts paused (the tests' first frame),
-// n_seg=N starts the first scene with that mesh (through the panel's own checks: an
-// out-of-range value is clamped with the panel's note), scene=NAME picks a built-in scene.
+// n_seg=N starts with that mesh (through the controller's checks: a value they refuse
+// leaves the scene's mesh, and the panel's note says why), scene=NAME picks a built-in
+// scene.
 // Outputs: the canvas, screenshots as downloads, and `window.invfree` after every frame (frames,
 // steps, min det F, mu, lambda, n_seg, frames/s, the panel's widget rectangles, note, banner), read
 // by the tests in a headless browser (tests/web) and by anyone curious in the browser's console.
