@@ -73,7 +73,9 @@ if [ ! -f "$deps/imgui/imgui.cpp" ]; then
   mkdir -p "$deps"
   rm -rf "$deps/unpack"
   mkdir "$deps/unpack"
-  (cd "$deps/unpack" && apt-get source -qq imgui=1.86+ds-1)
+  # The source of the libimgui-dev the desktop build uses (same headers), when installed.
+  version=$(dpkg-query -W -f='${source:Version}' libimgui-dev 2>/dev/null || true)
+  (cd "$deps/unpack" && apt-get source -qq "imgui${version:+=$version}")
   dir=$(find "$deps/unpack" -mindepth 1 -maxdepth 1 -type d -name 'imgui-*' | head -n 1)
   [ -f "$dir/imgui.cpp" ] || { echo "install-web-deps: apt-get source imgui gave no imgui.cpp" >&2; exit 1; }
   rm -rf "$deps/imgui"
