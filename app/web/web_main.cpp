@@ -7,11 +7,14 @@
 // n_seg=N starts with that mesh (through the controller's checks: a value they refuse
 // leaves the scene's mesh, and the panel's note says why), scene=NAME picks a built-in
 // scene.
+// Touch (shell.html): a finger is the left mouse button; a short tap on the picture plays or
+// pauses.
 // Outputs: the canvas, screenshots as downloads, and `window.invfree` after every frame (frames,
 // steps, min det F, mu, lambda, n_seg, frames/s, the panel's widget rectangles, note, banner), read
 // by the tests in a headless browser (tests/web) and by anyone curious in the browser's console.
 #include <GLFW/glfw3.h>
 #include <emscripten.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -37,6 +40,7 @@ struct Page {
   std::unique_ptr<LiveApp> app;
   bool failed = false;
   size_t messages_seen = 0;
+  bool tap = false;  // a short tap on the canvas since the last frame (shell.html)
   // frames/s over the last second, for window.invfree
   double fps_start_ms = 0.0, fps = 0.0;
   long fps_frames = 0;
@@ -212,18 +216,30 @@ void page_frame(void* arg) {
     });
   }
   follow_browser_window();
+  // A tap on the picture plays or pauses; on the panel it is only the click it also was.
+  if (p.tap && !ImGui::GetIO().WantCaptureMouse) {
+    invfree::live::LiveController& lc = p.app->controller();
+    lc.set_playing(!lc.playing());
+  }
+  p.tap = false;
   p.app->frame();
   download_screenshots(p);
   publish_state(p);
 }
 
+Page g_page;
+
 }  // namespace
+
+// Called by the page's touch handling (shell.html) after a short tap.
+extern "C" EMSCRIPTEN_KEEPALIVE void invfree_tap() {
+  g_page.tap = true;
+}
 
 int main() {
   // The page has no threads (no -pthread: that would need cross-origin isolation headers
   // from the server); the core's thread pool then runs everything on the calling thread.
   setenv("INVFREE_THREADS", "1", 1);
-  static Page page;
-  emscripten_set_main_loop_arg(page_frame, &page, 0, 1);
+  emscripten_set_main_loop_arg(page_frame, &g_page, 0, 1);
   return 0;
 }

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The web page (docs/web.md) in headless Chromium: it loads with no console error, the
 simulation advances (step count and min det F read from window.invfree), the mu slider
-changes mu and the picture, the first frame matches its golden, and the Screenshot button
-downloads a PNG of what the page shows.
+changes mu and the picture, the first frame matches its golden, the Screenshot button
+downloads a PNG of what the page shows, and a touch tap plays and pauses.
 
 Usage: web_page_test.py PAGE_DIR GOLDEN_DIR OUT_DIR
   PAGE_DIR    the built page (build/web: index.html, index.js, index.wasm)
@@ -187,6 +187,32 @@ def test_screenshot_download(driver, url, out_dir):
           f"{differing} pixels of its right half differ from the page's")
 
 
+def touch_tap(driver, x, y):
+    point = [{"x": int(x), "y": int(y)}]
+    driver.execute_cdp_cmd("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": point})
+    driver.execute_cdp_cmd("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+
+
+def test_touch_tap(driver, url):
+    # A tap on the picture (below the body, between the planes' hatching and the colour
+    # bar) plays the paused page and a second one pauses it; a tap on the panel's empty
+    # part below its plots does neither.
+    state = load(driver, url + "?paused=1")
+    panel_x = 0.5 * (state["widgets"]["min_det_plot"][0] + state["widgets"]["min_det_plot"][2])
+    panel_y = state["widgets"]["min_det_plot"][3] + 40
+    touch_tap(driver, panel_x, panel_y)
+    frames = pd.page_state(driver)["frames"]
+    after_panel = pd.wait_for(driver, lambda s: s["frames"] >= frames + 5, "frames after a tap on the panel")
+    if after_panel["playing"]:
+        fail("a tap on the panel started playing")
+    touch_tap(driver, 700, HEIGHT - 60)
+    pd.wait_for(driver, lambda s: s["playing"], "a tap on the picture to play")
+    touch_tap(driver, 700, HEIGHT - 60)
+    pd.wait_for(driver, lambda s: not s["playing"], "a second tap to pause")
+    check_no_console_error(driver, "touch")
+    print("touch: a tap on the picture plays and pauses, a tap on the panel does not")
+
+
 def main():
     if len(sys.argv) != 4:
         print(__doc__)
@@ -204,7 +230,8 @@ def main():
     tests = (("first frame", lambda: test_first_frame(driver, server.url, golden_dir, out_dir)),
              ("advances", lambda: test_advances(driver, server.url)),
              ("mu slider", lambda: test_mu_slider(driver, server.url)),
-             ("screenshot download", lambda: test_screenshot_download(driver, server.url, out_dir)))
+             ("screenshot download", lambda: test_screenshot_download(driver, server.url, out_dir)),
+             ("touch tap", lambda: test_touch_tap(driver, server.url)))
     try:
         for name, run in tests:
             try:
