@@ -73,9 +73,13 @@ Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) 
 }  // namespace
 
 bool display_available() {
+#ifdef __EMSCRIPTEN__
+  return true;  // the browser's canvas
+#else
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
   return (x && *x) || (w && *w);
+#endif
 }
 
 struct LiveAppImpl {
@@ -339,6 +343,21 @@ struct LiveAppImpl {
     return image_from_bottom_up(read_window_bottom_up(), renderer->width(), renderer->height());
   }
 
+  // This frame's simulation steps (none when paused); frame() waits for them before it
+  // returns.
+  std::future<void> start_steps() {
+    if (!controller->playing()) return {};
+#ifdef __EMSCRIPTEN__
+    // The web page has no threads (-pthread would need cross-origin isolation headers from
+    // the server): the steps run here, on the main thread, before the picture is drawn;
+    // the n_seg slider's maximum keeps them within a frame (docs/web.md).
+    controller->advance_frame();
+    return {};
+#else
+    return std::async(std::launch::async, [this] { controller->advance_frame(); });
+#endif
+  }
+
   // A scripted frame's input (tests): the mouse, held keys and typed text, as if from GLFW.
   void inject_input(const Injection& inject) {
     ImGuiIO& io = ImGui::GetIO();
@@ -405,9 +424,10 @@ struct LiveAppImpl {
     const render::FrameState state =
         render::capture_frame_state(controller->simulation(), &controller->det_f());
     const long revision = controller->revision();
-    std::future<void> stepping;
-    if (controller->playing())
-      stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
+    // The next state is computed while this frame is drawn, rasterized and presented (the
+    // GL work below reads only the copied state): on two cores the step and the renderer
+    // (llvmpipe's rasterizer threads too) then overlap instead of queueing.
+    std::future<void> stepping = start_steps();
     renderer->draw(state, draw_options);
     const int w = renderer->width(), h = renderer->height();
     // A recording holds each state once (from the initial one), not idle repeats.
@@ -504,8 +524,9 @@ static std::string create_renderer(LiveAppImpl& a) {
                         renderer_name.find("swrast") != std::string::npos;
   const auto get_proc = reinterpret_cast<render::GlGetProcAddress>(glfwGetProcAddress);
   std::string e;
+  const int samples = a.options.samples > 0 ? a.options.samples : (software ? 1 : 4);
   a.renderer =
-      render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, software ? 1 : 4);
+      render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, samples);
   return a.renderer ? "" : "the renderer could not start: " + e;
 }
 
@@ -537,7 +558,7 @@ static std::string start_imgui(LiveAppImpl& a) {
       io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kBigFontSize, &cfg, ranges.Data);
   if (!ImGui_ImplGlfw_InitForOpenGL(a.window, true)) return "ImGui's GLFW backend could not start";
   a.imgui_glfw = true;
-  if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
+  if (!ImGui_ImplOpenGL3_Init(a.gl.opengl_es ? "#version 300 es" : "#version 330 core"))
     return "ImGui's OpenGL3 backend could not start";
   a.imgui_gl = true;
   return "";

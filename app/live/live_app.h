@@ -43,6 +43,9 @@ struct LiveOptions {
   int width = 1280, height = 720;
   int steps_per_frame = 1;
   int max_segments = kDefaultMaxSegments;
+  // Multisampling of the picture; 0: 4x, or 1x on a software rasterizer named by
+  // GL_RENDERER (a browser masks that name: the web page finds out itself).
+  int samples = 0;
 };
 
 // Input a test substitutes for the real one in a frame: the mouse (window pixels, y

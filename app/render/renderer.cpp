@@ -30,7 +30,9 @@ std::string compile_error(const GlApi& gl, GLuint object, bool program) {
 GLuint build_program(const GlApi& gl, const char* name, const char* vertex, const char* fragment,
                      std::string* error) {
   GLuint shaders[2] = {gl.CreateShader(GL_VERTEX_SHADER), gl.CreateShader(GL_FRAGMENT_SHADER)};
-  const char* sources[2] = {vertex, fragment};
+  const std::string texts[2] = {glsl_for_context(vertex, gl.opengl_es),
+                                glsl_for_context(fragment, gl.opengl_es)};
+  const char* sources[2] = {texts[0].c_str(), texts[1].c_str()};
   for (int i = 0; i < 2; ++i) {
     gl.ShaderSource(shaders[i], 1, &sources[i], nullptr);
     gl.CompileShader(shaders[i]);

@@ -1,6 +1,8 @@
 #include "linalg/linear_solver.h"
 
+#ifndef INVFREE_NO_CHOLMOD  // defined by the web build (app/web/CMakeLists.txt)
 #include <cholmod.h>
+#endif
 #include <dlfcn.h>
 
 #include <Eigen/OrderingMethods>
@@ -27,6 +29,7 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
+#ifndef INVFREE_NO_CHOLMOD
 // ---- CHOLMOD's memory: a size-keyed recycling pool per factorisation -------------------
 // CHOLMOD allocates its numeric workspace on every factorisation and frees it on return.
 // The sizes depend on the symbolic analysis only, so after the first factorisation every
@@ -147,6 +150,7 @@ cholmod_sparse cholmod_view(const SpMat& a) {
   s.packed = 1;
   return s;
 }
+#endif  // INVFREE_NO_CHOLMOD
 
 // ---- LDL^T (core/linalg/sparse_ldlt.h) on a fill-reducing ordering -----------------------
 struct LdltBackend {
@@ -174,6 +178,11 @@ struct LdltBackend {
     return new_to_old;
   }
 
+#ifdef INVFREE_NO_CHOLMOD
+  static bool metis_order(const SpMat&, std::vector<int>&) {
+    return false;
+  }
+#else
   static bool metis_order(const SpMat& a, std::vector<int>& new_to_old) {
     cholmod_common c;
     cholmod_start(&c);
@@ -192,14 +201,18 @@ struct LdltBackend {
     cholmod_finish(&c);
     return ok;
   }
+#endif
 
   bool factorize(const SpMat& a, bool positive_definite) {
     return ldlt.factorize(a, positive_definite);
   }
   // The float copy, when kept (keep_float_copy), only ever serves PCG.
-  void solve(const VecX& b, VecX& x) { ldlt.solve_float(b, x); }
+  void solve(const VecX& b, VecX& x) {
+    ldlt.solve_float(b, x);
+  }
 };
 
+#ifndef INVFREE_NO_CHOLMOD
 // ---- BLAS threads ------------------------------------------------------------------------
 // OpenBLAS threads its level-2 and level-3 calls. That pays in a supernodal factorisation
 // (large dense blocks) but not in the triangular solves PCG repeats: there every call
@@ -296,6 +309,16 @@ struct CholmodBackend {
     return true;
   }
 };
+#else
+// Built without CHOLMOD (the web build, docs/web.md: SuiteSparse is not compiled to
+// WebAssembly): the LDL^T backend serves every request, and orderings are AMD's.
+struct CholmodBackend {
+  double factor_flops = 0.0, solve_flops = 0.0;
+  bool analyze(const SpMat&) { return false; }
+  bool factorize(const SpMat&) { return false; }
+  bool solve(const VecX&, VecX&) { return false; }
+};
+#endif  // INVFREE_NO_CHOLMOD
 
 // y = H v (H in full symmetric storage, so column i is row i) and v.y, in fixed blocks.
 double multiply(const SpMat& h, const VecX& v, VecX& y) {
