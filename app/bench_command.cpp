@@ -17,13 +17,17 @@
 #include <vector>
 
 #include "app/cli_checks.h"
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/format_number.h"
 #include "app/interrupt.h"
 #include "app/output_files.h"
 #include "app/plot/chart.h"
+#include "app/plot/loglog_fit.h"
 #include "app/scene_options.h"
 #include "linalg/parallel.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 
 namespace invfree {
@@ -43,17 +47,12 @@ struct BenchRow {
   int n_seg = 0, nodes = 0, triangles = 0, dofs = 0, steps = 0;
   double mean_ms = 0, median_ms = 0, newton = 0;
   // The step that took the most Newton iterations (1-based) and how many: how close the
-  // run came to Newton's iteration cap (n_seg 256's fold steps, README: Performance).
+  // run came to Newton's iteration cap (at n_seg 256, the fold steps near step 250).
   int newton_worst = 0, newton_worst_step = 0;
   double assembly = 0, factor = 0, solve = 0, line_search = 0, other = 0;
   double pcg = 0, factorizations = 0;
   std::string solver;
 };
-
-int fail(int code, const std::string& message) {
-  std::fprintf(stderr, "invfree: %s\n", message.c_str());
-  return code;
-}
 
 // "4,8,16" -> {4, 8, 16}; "" on success, else the reason.
 std::string parse_sizes(const std::string& text, std::vector<int>& sizes) {
@@ -92,8 +91,8 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
   row.nodes = sim.mesh.node_count();
   row.triangles = sim.mesh.triangle_count();
   row.dofs = 2 * row.nodes + (scene.has_ceiling ? 1 : 0);
-  row.solver = scene.integrator == Integrator::ImplicitEuler ? sim.workspace.solver.backend_name()
-                                                             : "explicit";
+  row.solver =
+      scene.integrator == Integrator::ImplicitEuler ? linear_solver_backend(sim) : "explicit";
   std::vector<double> ms;
   ms.reserve(steps);
   long newton = 0, pcg = 0, factorizations = 0;
@@ -149,12 +148,6 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
   return *code == exit_code::kOk;
 }
 
-std::string fmt(double v, int precision = 4) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.*g", precision, v);
-  return b;
-}
-
 std::string csv_text(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
   o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,newton_worst,"
@@ -162,44 +155,40 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
        "factorizations_per_step,solver\n";
   for (const auto& r : rows)
     o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
-      << fmt(r.mean_ms, 6) << "," << fmt(r.median_ms, 6) << "," << fmt(r.newton, 5) << ","
-      << r.newton_worst << "," << r.newton_worst_step << "," << fmt(r.assembly, 6) << ","
-      << fmt(r.factor, 6) << "," << fmt(r.solve, 6) << "," << fmt(r.line_search, 6) << ","
-      << fmt(r.other, 6) << "," << fmt(r.pcg, 5) << "," << fmt(r.factorizations, 5) << ","
-      << r.solver << "\n";
+      << format_number(r.mean_ms, "%.6g") << "," << format_number(r.median_ms, "%.6g") << ","
+      << format_number(r.newton, "%.5g") << "," << r.newton_worst << "," << r.newton_worst_step
+      << "," << format_number(r.assembly, "%.6g") << "," << format_number(r.factor, "%.6g") << ","
+      << format_number(r.solve, "%.6g") << "," << format_number(r.line_search, "%.6g") << ","
+      << format_number(r.other, "%.6g") << "," << format_number(r.pcg, "%.5g") << ","
+      << format_number(r.factorizations, "%.5g") << "," << r.solver << "\n";
   return o.str();
 }
 
-// Least-squares slope of log(ms) against log(dofs) over the rows with n_seg >= 32 (the
-// range the scaling target speaks of), or over every row when fewer than two qualify.
-// Returns false when fewer than two usable rows exist.
-bool fit_slope(const std::vector<BenchRow>& rows, double* slope, double* intercept, int* from_n) {
-  auto fit = [&](int min_n) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int k = 0;
-    for (const auto& r : rows) {
-      if (r.n_seg < min_n || !(r.median_ms > 0.0)) continue;
-      const double x = std::log(r.dofs), y = std::log(r.median_ms);
-      sx += x, sy += y, sxx += x * x, sxy += x * y;
-      ++k;
-    }
-    const double den = k * sxx - sx * sx;
-    if (k < 2 || den <= 0.0) return false;
-    *slope = (k * sxy - sx * sy) / den;
-    *intercept = (sy - *slope * sx) / k;
+// The log-log fit of median ms per step against unknowns over the rows with n_seg >= 32
+// (the range the scaling target speaks of), or over every row when fewer than two qualify;
+// *from_n: the smallest n_seg of that range. Not ok() when fewer than two rows are usable.
+LogLogFit fit_cost(const std::vector<BenchRow>& rows, int* from_n) {
+  for (int min_n : {32, 1}) {
+    std::vector<double> dofs, ms;
+    for (const auto& r : rows)
+      if (r.n_seg >= min_n) {
+        dofs.push_back(r.dofs);
+        ms.push_back(r.median_ms);
+      }
     *from_n = min_n;
-    return true;
-  };
-  return fit(32) || fit(1);
+    if (const LogLogFit fit = fit_loglog(dofs, ms); fit.ok()) return fit;
+  }
+  return {};
 }
 
-// The reference Python demo's median ms per step on these machines (issue 2), n_seg 4, 8, 16.
+// The reference Python demo's median ms per step at n_seg 4, 8, 16, measured on the
+// project's 2-core machine (AMD EPYC): the denominators of the "x the reference" column.
 constexpr double kReferenceMs[3] = {36.0, 118.0, 495.0};
 constexpr int kReferenceNseg[3] = {4, 8, 16};
 
 // True when `scene` is the built-in `compress` (any n_seg): the reference applies.
 bool is_reference_scene(SceneDef scene) {
-  const auto compress = find_builtin_scene("compress");
+  const auto compress = load_builtin_scene("compress").scene;
   scene.n_seg = compress->n_seg;
   return scene == *compress;
 }
@@ -221,18 +210,18 @@ Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bo
     search.x.push_back(r.dofs), search.y.push_back(r.line_search);
   }
   for (Series* s : {&assembly, &linear, &search}) s->lines = true;
-  double slope = 0, intercept = 0;
   int from_n = 0;
-  if (fit_slope(rows, &slope, &intercept, &from_n)) {
-    Series fitted{"fit: ms ~ DOF^" + fmt(slope, 3), {}, {}, Rgb{0.8f, 0.1f, 0.1f}};
+  if (const LogLogFit fit = fit_cost(rows, &from_n); fit.ok()) {
+    Series fitted{
+        "fit: ms ~ DOF^" + format_number(fit.slope, "%.3g"), {}, {}, Rgb{0.8f, 0.1f, 0.1f}};
     fitted.markers = false;
     for (const auto& r : rows)
       if (r.n_seg >= from_n) {
         fitted.x.push_back(r.dofs);
-        fitted.y.push_back(std::exp(intercept + slope * std::log(r.dofs)));
+        fitted.y.push_back(std::exp(fit.intercept + fit.slope * std::log(r.dofs)));
       }
     spec.series.push_back(fitted);
-    spec.notes.push_back("fitted slope " + fmt(slope, 3) +
+    spec.notes.push_back("fitted slope " + format_number(fit.slope, "%.3g") +
                          " over n_seg >= " + std::to_string(from_n));
   }
   if (reference) {
@@ -274,6 +263,54 @@ int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_m
   return lo;
 }
 
+// The stdout table: its header, then one line per size (with the speed-up over the
+// reference demo where it applies).
+void print_header() {
+  std::printf("%-6s %8s %10s %6s %10s %10s %7s %6s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
+              "triangles", "steps", "median_ms", "mean_ms", "newton", "worst", "assembly", "factor",
+              "solve", "search", "pcg", "solver");
+}
+void print_row(const BenchRow& row, bool reference) {
+  std::string speedup;
+  for (int k = 0; k < 3; ++k)
+    if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
+      speedup = "  " + format_number(kReferenceMs[k] / row.median_ms, "%.4g") + "x the reference";
+  std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %6d %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n",
+              row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton,
+              row.newton_worst, row.assembly, row.factor, row.solve, row.line_search, row.pcg,
+              row.solver.c_str(), speedup.c_str());
+  flush_standard_output();
+}
+
+// --fps: the largest n_seg whose median step fits in one frame, from the sizes that ran
+// and, between the largest that fits and the smallest that does not, by bisection.
+int report_fps(const SceneDef& scene, const std::vector<BenchRow>& rows, const BenchOptions& opt) {
+  const double budget = 1000.0 / opt.fps;
+  int lo = 0, hi = 0;
+  for (const auto& r : rows) {
+    if (r.median_ms <= budget)
+      lo = std::max(lo, r.n_seg);
+    else if (hi == 0 || r.n_seg < hi)
+      hi = r.n_seg;
+  }
+  if (lo == 0) {
+    std::printf("no size ran within %.1f ms per step (%.0f fps)\n", budget, opt.fps);
+  } else if (hi == 0 || hi <= lo) {
+    std::printf("largest n_seg at %.0f fps: at least %d (every size ran within %.1f ms per step)\n",
+                opt.fps, lo, budget);
+  } else {
+    std::printf("bisecting n_seg in (%d, %d) for %.1f ms per step (%.0f fps):\n", lo, hi, budget,
+                opt.fps);
+    std::string error;
+    int code = exit_code::kOk;
+    const int best = bisect_fps(scene, lo, hi, opt.steps, budget, &error, &code);
+    if (best < 0) return fail(code, error);
+    std::printf("largest n_seg at %.0f fps (median step within %.1f ms): %d\n", opt.fps, budget,
+                best);
+  }
+  return exit_code::kOk;
+}
+
 int run_bench(const BenchOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
@@ -286,14 +323,12 @@ int run_bench(const BenchOptions& opt) {
     if (auto e = validate_scene(s); !e.empty())
       return fail(exit_code::kBadInput, "n_seg " + std::to_string(n) + ": " + e);
   }
-  for (const char* name : {"/bench.csv", "/bench.png"})
-    if (auto e = check_output_file(opt.out_dir + name, opt.scene.input_files()))
-      return fail(e.exit_code, e.message);
+  if (auto e = check_output_files({opt.out_dir + "/bench.csv", opt.out_dir + "/bench.png"},
+                                  opt.scene.input_files()))
+    return fail(e.exit_code, e.message);
   if (opt.threads > 0) set_thread_count(opt.threads);
 
-  std::printf("%-6s %8s %10s %6s %10s %10s %7s %6s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
-              "triangles", "steps", "median_ms", "mean_ms", "newton", "worst", "assembly", "factor",
-              "solve", "search", "pcg", "solver");
+  print_header();
   const bool reference = is_reference_scene(*scene);
   std::vector<BenchRow> rows;
   int code = exit_code::kOk;
@@ -303,15 +338,7 @@ int run_bench(const BenchOptions& opt) {
     if (!ok && row.steps == 0) break;
     if (!ok) row.solver += " (failed at step " + std::to_string(row.steps + 1) + ")";
     rows.push_back(row);
-    std::string speedup;
-    for (int k = 0; k < 3; ++k)
-      if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
-        speedup = "  " + fmt(kReferenceMs[k] / row.median_ms, 4) + "x the reference";
-    std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %6d %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n",
-                row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms,
-                row.newton, row.newton_worst, row.assembly, row.factor, row.solve, row.line_search,
-                row.pcg, row.solver.c_str(), speedup.c_str());
-    flush_standard_output();
+    print_row(row, reference);
     if (!ok) break;
   }
   // Whatever completed is written, also after a failure or Ctrl-C.
@@ -322,63 +349,36 @@ int run_bench(const BenchOptions& opt) {
                            chart(rows, scene->name, is_reference_scene(*scene)));
         !e.empty())
       return fail(exit_code::kOutputFailed, e);
-    double slope = 0, intercept = 0;
     int from_n = 0;
-    if (fit_slope(rows, &slope, &intercept, &from_n))
-      std::printf("fitted slope: ms per step ~ DOF^%.3f over n_seg >= %d\n", slope, from_n);
+    if (const LogLogFit fit = fit_cost(rows, &from_n); fit.ok())
+      std::printf("fitted slope: ms per step ~ DOF^%.3f over n_seg >= %d\n", fit.slope, from_n);
     std::printf("wrote %s/bench.csv and %s/bench.png\n", opt.out_dir.c_str(), opt.out_dir.c_str());
   }
   if (code != exit_code::kOk) return fail(code, error);
 
-  if (opt.fps > 0.0) {
-    const double budget = 1000.0 / opt.fps;
-    int lo = 0, hi = 0;
-    for (const auto& r : rows) {
-      if (r.median_ms <= budget)
-        lo = std::max(lo, r.n_seg);
-      else if (hi == 0 || r.n_seg < hi)
-        hi = r.n_seg;
-    }
-    if (lo == 0) {
-      std::printf("no size ran within %.1f ms per step (%.0f fps)\n", budget, opt.fps);
-    } else if (hi == 0 || hi <= lo) {
-      std::printf(
-          "largest n_seg at %.0f fps: at least %d (every size ran within %.1f ms per step)\n",
-          opt.fps, lo, budget);
-    } else {
-      std::printf("bisecting n_seg in (%d, %d) for %.1f ms per step (%.0f fps):\n", lo, hi, budget,
-                  opt.fps);
-      const int best = bisect_fps(*scene, lo, hi, opt.steps, budget, &error, &code);
-      if (best < 0) return fail(code, error);
-      std::printf("largest n_seg at %.0f fps (median step within %.1f ms): %d\n", opt.fps, budget,
-                  best);
-    }
-  }
+  if (opt.fps > 0.0) return report_fps(*scene, rows, opt);
   return exit_code::kOk;
 }
 
 }  // namespace
 
 void register_bench_command(CLI::App& app, int& exit_code) {
-  auto opt = std::make_shared<BenchOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "bench", "time a scene at several mesh sizes; write bench.csv and a log-log chart bench.png");
-  opt->scene.add_to(cmd);
-  cmd->add_option("--sizes", opt->sizes, "comma-separated n_seg values")->capture_default_str();
-  cmd->add_option("--steps", opt->steps,
+  auto [cmd, opt] = add_command<BenchOptions>(
+      app, exit_code, "bench",
+      "time a scene at several mesh sizes; write bench.csv and a log-log chart bench.png",
+      run_bench);
+  opt.scene.add_to(cmd);
+  cmd->add_option("--sizes", opt.sizes, "comma-separated n_seg values")->capture_default_str();
+  cmd->add_option("--steps", opt.steps,
                   "time steps per size (the whole run of the scene by default)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--out", opt->out_dir, "output directory for bench.csv and bench.png")
-      ->capture_default_str()
-      ->type_name("DIR")
-      ->check(non_empty_path());
-  cmd->add_option("--threads", opt->threads, "worker threads (default: every core)")
+  add_output_directory_option(cmd, opt.out_dir, "output directory for bench.csv and bench.png");
+  cmd->add_option("--threads", opt.threads, "worker threads (default: every core)")
       ->check(CLI::Range(1, 256));
-  cmd->add_option("--fps", opt->fps,
+  cmd->add_option("--fps", opt.fps,
                   "then find the largest n_seg whose median step fits in one frame at this rate")
       ->check(finite_range(1.0, 10000.0));
-  cmd->callback([opt, &exit_code] { exit_code = run_bench(*opt); });
 }
 
 }  // namespace invfree

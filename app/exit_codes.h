@@ -1,4 +1,5 @@
-// Process exit codes of every invfree command (documented in --help and docs/outputs.md).
+// Process exit codes of every invfree command (documented in `invfree --help` and
+// docs/outputs.md).
 #pragma once
 
 namespace invfree::exit_code {

@@ -3,15 +3,16 @@
 // suggesting `invfree render` or xvfb-run and exits with code 4 (the window, its output,
 // could not be opened).
 #include <cstdio>
-#include <memory>
 
 #include "app/cli_checks.h"
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
-#include "app/output_files.h"
+#include "app/scene_options.h"
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 
 namespace invfree {
@@ -19,9 +20,8 @@ namespace invfree {
 namespace {
 
 struct LiveCommandOptions {
-  std::string scene = "compress";
+  SceneOptions scene;  // the one shown first; the --set overrides apply to it
   std::vector<std::string> scene_files;
-  std::vector<std::string> overrides;
   std::string size = "1280x720";
   live::LiveOptions live;
 };
@@ -30,7 +30,7 @@ struct LiveCommandOptions {
 // --scene one is selected and gets the --set overrides.
 int build_scenes(const LiveCommandOptions& opt, live::LiveOptions* out) {
   std::vector<std::string> names;
-  for (const auto& e : builtin_scenes()) names.push_back(e.name);
+  for (const auto& e : builtin_scenes()) names.emplace_back(e.name);
   auto add = [&](const std::string& n) {
     for (size_t i = 0; i < names.size(); ++i)
       if (names[i] == n) return static_cast<int>(i);
@@ -38,61 +38,45 @@ int build_scenes(const LiveCommandOptions& opt, live::LiveOptions* out) {
     return static_cast<int>(names.size()) - 1;
   };
   for (const auto& f : opt.scene_files) add(f);
-  const int selected = add(opt.scene);
+  const int selected = add(opt.scene.scene);
   out->scenes.clear();
   for (int i = 0; i < static_cast<int>(names.size()); ++i) {
-    SceneLoad load = load_scene(names[i]);
-    if (!load.scene) {
-      std::fprintf(stderr, "invfree: %s\n", load.error.c_str());
-      return exit_code::kBadInput;
-    }
-    if (i == selected) {
-      for (const auto& o : opt.overrides) {
-        if (auto e = apply_override(*load.scene, o); !e.empty()) {
-          std::fprintf(stderr, "invfree: %s\n", e.c_str());
-          return exit_code::kBadInput;
-        }
-      }
-      if (auto e = validate_scene(*load.scene); !e.empty()) {
-        std::fprintf(stderr, "invfree: %s: %s\n", names[i].c_str(), e.c_str());
-        return exit_code::kBadInput;
-      }
-    }
+    SceneLoad load;
+    if (i == selected)
+      load.scene = opt.scene.resolve(&load.error);
+    else
+      load = load_scene(names[i]);
+    if (!load.scene) return fail(exit_code::kBadInput, load.error);
     out->scenes.push_back({names[i], *load.scene});
   }
   out->selected = selected;
   return exit_code::kOk;
 }
 
-int run_live_command(LiveCommandOptions& opt) {
+int run_live_command(const LiveCommandOptions& opt) {
   int w = 0, h = 0;
   char tail = 0;
   if (std::sscanf(opt.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 320 || h < 240 ||
-      w > 8192 || h > 8192) {
-    std::fprintf(stderr,
-                 "invfree: --size %s: expected WIDTHxHEIGHT between 320x240 and 8192x8192\n",
-                 opt.size.c_str());
-    return exit_code::kBadInput;
-  }
+      w > 8192 || h > 8192)
+    return fail(exit_code::kBadInput,
+                "--size " + opt.size + ": expected WIDTHxHEIGHT between 320x240 and 8192x8192");
   live::LiveOptions lo = opt.live;
   lo.width = w;
   lo.height = h;
   if (int code = build_scenes(opt, &lo); code != exit_code::kOk) return code;
   if (!lo.screenshot_file.empty()) {
-    std::vector<std::string> inputs = opt.scene_files;
-    inputs.push_back(opt.scene);
-    if (auto e = check_output_file(lo.screenshot_file, inputs)) {
-      std::fprintf(stderr, "invfree: %s\n", e.message.c_str());
-      return e.exit_code;
-    }
+    std::vector<std::string> inputs = opt.scene.input_files();
+    inputs.insert(inputs.end(), opt.scene_files.begin(), opt.scene_files.end());
+    if (auto e = check_output_files({lo.screenshot_file}, inputs))
+      return fail(e.exit_code, e.message);
   }
   // Scripted runs draw as fast as they can: no waiting for the screen's refresh.
   if (lo.frames > 0 || lo.bench) lo.vsync = false;
   lo.stop = [] { return interrupted(); };
   const int code = live::run_live(lo);
   if (code == exit_code::kOk && interrupted()) {
-    std::fprintf(stderr, "invfree: live: interrupted; recordings and screenshots are complete\n");
-    return interrupted_exit_code();
+    return fail(interrupted_exit_code(),
+                "live: interrupted; recordings and screenshots are complete");
   }
   return code;
 }
@@ -100,55 +84,47 @@ int run_live_command(LiveCommandOptions& opt) {
 }  // namespace
 
 void register_live_command(CLI::App& app, int& exit_code) {
-  auto opt = std::make_shared<LiveCommandOptions>();
-  CLI::App* cmd = app.add_subcommand("live",
-                                     "interactive window: the running simulation with sliders for "
-                                     "mu and lambda (the default command "
-                                     "when a display is available)");
-  std::string names;
-  for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
-  cmd->add_option("--scene", opt->scene,
-                  "scene to start with: built-in (" + names + ") or a TOML scene file")
-      ->capture_default_str();
-  cmd->add_option("scene_files", opt->scene_files, "more TOML scene files for the scene picker")
+  auto [cmd, opt] = add_command<LiveCommandOptions>(
+      app, exit_code, "live",
+      "interactive window: the running simulation with sliders for mu and lambda (the default "
+      "command when a display is available)",
+      run_live_command);
+  opt.scene.add_to(cmd, "scene to start with: built-in", "override a value of the starting scene");
+  cmd->add_option("scene_files", opt.scene_files, "more TOML scene files for the scene picker")
       ->type_name("FILE ...");
-  cmd->add_option("--set", opt->overrides,
-                  "override a value of the starting scene, e.g. --set material.E=1e4 (repeatable)")
-      ->type_name("SECTION.KEY=VALUE");
-  cmd->add_option("--frames", opt->live.frames,
+  cmd->add_option("--frames", opt.live.frames,
                   "run this many frames, then exit (0: until the window is closed)")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000000));
-  cmd->add_option("--screenshot", opt->live.screenshot_file,
+  cmd->add_option("--screenshot", opt.live.screenshot_file,
                   "save the last frame (window as shown) as a PNG")
       ->type_name("FILE")
       ->check(non_empty_path());
-  cmd->add_option("--screenshot-dir", opt->live.screenshot_dir,
+  cmd->add_option("--screenshot-dir", opt.live.screenshot_dir,
                   "where Ctrl+P saves invfree_NNNN.png and Record makes invfree_recording_NNNN/")
       ->capture_default_str()
       ->type_name("DIR")
       ->check(non_empty_path());
-  cmd->add_option("--record", opt->live.record_dir,
+  cmd->add_option("--record", opt.live.record_dir,
                   "record from the start: DIR/frame_000000.png, ... (as `invfree render`); DIR "
                   "must be empty")
       ->type_name("DIR")
       ->check(non_empty_path());
-  cmd->add_flag("--bench", opt->live.bench,
+  cmd->add_flag("--bench", opt.live.bench,
                 "print frames per second (with the simulation running) at the end");
-  cmd->add_flag("--paused", opt->live.paused, "start paused");
-  cmd->add_flag("--no-panel", opt->live.hide_panel, "start with the panel hidden (Tab shows it)");
-  cmd->add_option("--size", opt->size, "window size")->capture_default_str()->type_name("WxH");
-  cmd->add_option("--steps-per-frame", opt->live.steps_per_frame, "time steps per displayed frame")
+  cmd->add_flag("--paused", opt.live.paused, "start paused");
+  cmd->add_flag("--no-panel", opt.live.hide_panel, "start with the panel hidden (Tab shows it)");
+  cmd->add_option("--size", opt.size, "window size")->capture_default_str()->type_name("WxH");
+  cmd->add_option("--steps-per-frame", opt.live.steps_per_frame, "time steps per displayed frame")
       ->capture_default_str()
       ->check(CLI::Range(1, 10));
   cmd->add_option(
-         "--max-n-seg", opt->live.max_segments,
+         "--max-n-seg", opt.live.max_segments,
          "the n_seg slider's maximum (default: the largest mesh measured at >= 30 frames/s)")
       ->capture_default_str()
       ->check(CLI::Range(2, 1024));
   cmd->footer("\n" + live::help_text() +
               "\nWithout a display: use `invfree render`, or run `xvfb-run -a invfree live ...`.");
-  cmd->callback([opt, &exit_code] { exit_code = run_live_command(*opt); });
 }
 
 int run_default_command() {

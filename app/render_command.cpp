@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <regex>
 #include <string>
@@ -30,6 +31,7 @@
 #include <vector>
 
 #include "app/cli_checks.h"
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -60,11 +62,6 @@ struct RenderOptions {
 
 // The frame rates a movie may have (--fps, or the real-time rate it defaults to).
 constexpr double kMinFps = 0.1, kMaxFps = 1000.0;
-
-int fail(int code, const std::string& message) {
-  std::fprintf(stderr, "invfree: %s\n", message.c_str());
-  return code;
-}
 
 // "1280x720" -> (1280, 720); false when malformed or outside 64..8192.
 bool parse_size(const std::string& text, int* width, int* height) {
@@ -279,6 +276,43 @@ class Progress {
   double last_ = -1.0;
 };
 
+// What a render run produced: frames written, the det F range over them, and the failed
+// step's report (status Ok when none failed).
+struct RenderedFrames {
+  int frames = 0;
+  double det_lo = 1.0, det_hi = 1.0;
+  StepReport failure;
+};
+
+// The pipeline (see the top of this file): simulation thread, drawing here, PNG encoding
+// on the writer's threads. Stops at the end, at a failed step, a write error or Ctrl-C.
+RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
+                             render::FrameWriter& writer, const RenderOptions& opt,
+                             const std::function<double()>& elapsed) {
+  render::DrawOptions draw_options;
+  draw_options.edges = !opt.no_edges;
+  Progress progress(opt.frames);
+  RenderedFrames out;
+  SimulationThread producer(sim, opt.frames, opt.steps_per_frame);
+  render::FrameState state;
+  while (!interrupted() && producer.next(&state)) {
+    const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
+    out.det_lo = out.frames == 0 ? *lo : std::min(out.det_lo, *lo);
+    out.det_hi = out.frames == 0 ? *hi : std::max(out.det_hi, *hi);
+    renderer.draw(state, draw_options);
+    std::vector<std::uint8_t> pixels = writer.take_buffer();
+    renderer.read_pixels(&pixels);
+    if (!writer.submit(opt.out + "/" + frame_name(out.frames), renderer.width(), renderer.height(),
+                       std::move(pixels)))
+      break;
+    ++out.frames;
+    progress.update(out.frames, elapsed());
+  }
+  out.failure = producer.stop();  // joins; the simulation is the caller's again
+  progress.clear();
+  return out;
+}
+
 int run_render(const RenderOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
@@ -318,39 +352,16 @@ int run_render(const RenderOptions& opt) {
   };
   Simulation sim = make_simulation(*scene);
   render::FrameWriter writer(opt.writer_threads, opt.png_level);
-  render::DrawOptions draw_options;
-  draw_options.edges = !opt.no_edges;
-  Progress progress(opt.frames);
-  double det_lo = 1.0, det_hi = 1.0;
-  int frames = 0;
-  StepReport failure;
-  {
-    SimulationThread producer(sim, opt.frames, opt.steps_per_frame);
-    render::FrameState state;
-    while (!interrupted() && producer.next(&state)) {
-      const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
-      det_lo = frames == 0 ? *lo : std::min(det_lo, *lo);
-      det_hi = frames == 0 ? *hi : std::max(det_hi, *hi);
-      renderer->draw(state, draw_options);
-      std::vector<std::uint8_t> pixels = writer.take_buffer();
-      renderer->read_pixels(&pixels);
-      if (!writer.submit(opt.out + "/" + frame_name(frames), width, height, std::move(pixels)))
-        break;
-      ++frames;
-      progress.update(frames, elapsed());
-    }
-    failure = producer.stop();  // joins; the simulation is ours again
-  }
+  const RenderedFrames done = render_frames(sim, *renderer, writer, opt, elapsed);
   const std::string write_error = writer.finish();
   const double seconds = elapsed();
-  progress.clear();
   if (!write_error.empty()) return fail(exit_code::kOutputFailed, write_error);
 
   std::string movie;
   bool movie_stopped = false;  // interrupted while ffmpeg ran
-  if (opt.mp4 && failure.status == StepStatus::Ok && !interrupted() && frames > 0) {
+  if (opt.mp4 && done.failure.status == StepStatus::Ok && !interrupted() && done.frames > 0) {
     bool made = false;
-    if (auto e = make_movie(ffmpeg, opt.out, frames, fps, &made); !e.empty())
+    if (auto e = make_movie(ffmpeg, opt.out, done.frames, fps, &made); !e.empty())
       return fail(exit_code::kOutputFailed, e);
     if (made) movie = ", " + opt.out + "/movie.mp4";
     movie_stopped = !made;
@@ -358,19 +369,19 @@ int run_render(const RenderOptions& opt) {
   std::printf(
       "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, det F "
       "in [%.4f, %.4f]\n",
-      sim.scene.name.c_str(), frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
-      frame_name(std::max(frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time, seconds,
-      seconds > 0 ? frames / seconds : 0.0, det_lo, det_hi);
-  if (failure.status != StepStatus::Ok)
+      sim.scene.name.c_str(), done.frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
+      frame_name(std::max(done.frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time,
+      seconds, seconds > 0 ? done.frames / seconds : 0.0, done.det_lo, done.det_hi);
+  if (done.failure.status != StepStatus::Ok)
     return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) +
-                                           " failed: " + step_status_name(failure.status) + ": " +
-                                           failure.message);
+                                           " failed: " + step_status_name(done.failure.status) +
+                                           ": " + done.failure.message);
   if (movie_stopped)
     return fail(interrupted_exit_code(), "interrupted while making " + opt.out +
                                              "/movie.mp4 (none written); the " +
-                                             std::to_string(frames) + " frames are complete");
+                                             std::to_string(done.frames) + " frames are complete");
   if (interrupted())
-    return fail(interrupted_exit_code(), "interrupted after frame " + std::to_string(frames) +
+    return fail(interrupted_exit_code(), "interrupted after frame " + std::to_string(done.frames) +
                                              "; the frames written are complete");
   return exit_code::kOk;
 }
@@ -378,39 +389,36 @@ int run_render(const RenderOptions& opt) {
 }  // namespace
 
 void register_render_command(CLI::App& app, int& exit_code) {
-  auto opt = std::make_shared<RenderOptions>();
-  CLI::App* cmd = app.add_subcommand("render",
-                                     "render a scene offscreen (no display needed) to "
-                                     "DIR/frame_000000.png ... (frame 0: the initial state)");
-  opt->scene.add_to(cmd);
-  cmd->add_option("--frames", opt->frames, "number of frames, the initial state included")
+  auto [cmd, opt] = add_command<RenderOptions>(app, exit_code, "render",
+                                               "render a scene offscreen (no display needed) to "
+                                               "DIR/frame_000000.png ... (frame 0: the initial "
+                                               "state)",
+                                               run_render);
+  opt.scene.add_to(cmd);
+  cmd->add_option("--frames", opt.frames, "number of frames, the initial state included")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--steps-per-frame", opt->steps_per_frame, "time steps between frames")
+  cmd->add_option("--steps-per-frame", opt.steps_per_frame, "time steps between frames")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--out", opt->out,
-                  "output directory (must be empty or new, see --force; locked while the run "
-                  "writes, see docs/outputs.md)")
-      ->type_name("DIR")
-      ->capture_default_str()
-      ->check(non_empty_path());
-  cmd->add_option("--size", opt->size, "frame size in pixels")
+  add_output_directory_option(cmd, opt.out,
+                              "output directory (must be empty or new, see --force; locked while "
+                              "the run writes, see docs/outputs.md)");
+  cmd->add_option("--size", opt.size, "frame size in pixels")
       ->type_name("WxH")
       ->capture_default_str();
-  cmd->add_flag("--no-edges", opt->no_edges, "do not draw the triangle edges");
-  cmd->add_flag("--mp4", opt->mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");
-  cmd->add_option("--fps", opt->fps,
+  cmd->add_flag("--no-edges", opt.no_edges, "do not draw the triangle edges");
+  cmd->add_flag("--mp4", opt.mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");
+  cmd->add_option("--fps", opt.fps,
                   "frame rate of movie.mp4 (default: real time, 1 / (h * steps-per-frame))")
       ->check(finite_range(kMinFps, kMaxFps));
-  cmd->add_option("--png-level", opt->png_level,
+  cmd->add_option("--png-level", opt.png_level,
                   "PNG compression level (stb_image_write; 1 is fastest)")
       ->capture_default_str()
       ->check(CLI::Range(1, 9));
-  cmd->add_flag("--force", opt->force,
+  cmd->add_flag("--force", opt.force,
                 "write into a non-empty output directory: this run's frames replace those of the "
                 "same number, later ones stay and are not in movie.mp4");
-  cmd->callback([opt, &exit_code] { exit_code = run_render(*opt); });
 }
 
 }  // namespace invfree

@@ -1,16 +1,15 @@
 #include "app/scene_options.h"
 
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 
 namespace invfree {
 
-void SceneOptions::add_to(CLI::App* cmd) {
-  std::string names;
-  for (const auto& e : builtin_scenes()) names += std::string(names.empty() ? "" : ", ") + e.name;
-  cmd->add_option("--scene", scene, "built-in scene (" + names + ") or a TOML scene file")
+void SceneOptions::add_to(CLI::App* cmd, const std::string& scene_what,
+                          const std::string& set_what) {
+  cmd->add_option("--scene", scene, scene_what + " (" + builtin_scene_names() + ") or a TOML scene file")
       ->capture_default_str();
-  cmd->add_option("--set", overrides,
-                  "override a scene value, e.g. --set material.E=1e4 (repeatable)")
+  cmd->add_option("--set", overrides, set_what + ", e.g. --set material.E=1e4 (repeatable)")
       ->type_name("SECTION.KEY=VALUE");
 }
 
@@ -30,7 +29,8 @@ std::optional<SceneDef> SceneOptions::resolve(std::string* error) const {
 }
 
 std::vector<std::string> SceneOptions::input_files() const {
-  if (find_builtin_scene(scene)) return {};
+  for (const auto& e : builtin_scenes())
+    if (e.name == scene) return {};  // load_scene prefers the built-in scene of that name
   return {scene};
 }
 

@@ -1,7 +1,8 @@
 // The scene options every command shares: --scene NAME|FILE and repeated --set
-// section.key=value. `resolve` loads the scene, applies the overrides in order and
-// validates; on failure it returns an empty optional and a one-line error. `input_files`
-// names the file the command reads (none for a built-in scene), which no output may be.
+// section.key=value. `resolve` loads the scene and applies the overrides in order, each
+// validated (scene_io/scene_file.h); on failure it returns an empty optional and a
+// one-line error. `input_files` names the file the command reads (none for a built-in
+// scene), which no output may be.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -17,7 +18,10 @@ struct SceneOptions {
   std::string scene = "compress";
   std::vector<std::string> overrides;
 
-  void add_to(CLI::App* cmd);
+  // `scene_what` and `set_what` begin the options' help ("<scene_what> (<built-in names>)
+  // or a TOML scene file", "<set_what>, e.g. --set material.E=1e4 (repeatable)").
+  void add_to(CLI::App* cmd, const std::string& scene_what = "built-in scene",
+              const std::string& set_what = "override a scene value");
   std::optional<SceneDef> resolve(std::string* error) const;
   std::vector<std::string> input_files() const;
 };

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/cli_checks.h"
+#include "app/command.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -36,9 +37,38 @@ std::string obj_text(const Simulation& sim) {
   return o.str();
 }
 
-int fail(int code, const std::string& message) {
-  std::fprintf(stderr, "invfree: %s\n", message.c_str());
-  return code;
+// The CSV row of the step just taken (the columns of --csv).
+void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r) {
+  const auto det = triangle_det_f(sim);
+  const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
+  const double gap = min_plane_gap(sim);
+  csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual << ","
+      << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
+      << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
+}
+
+// The one-line summary on stdout: steps, time, mean Newton iterations and ms per step,
+// the final det F range.
+void print_summary(const Simulation& sim, long total_iterations, double total_ms) {
+  const long done = sim.step_count;
+  const auto det = triangle_det_f(sim);
+  const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
+  std::printf(
+      "%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, det F in [%.4f, "
+      "%.4f]\n",
+      sim.scene.name.c_str(), done, sim.time, done ? double(total_iterations) / done : 0.0,
+      done ? total_ms / done : 0.0, *lo, *hi);
+  flush_standard_output();
+}
+
+// Which step failed, how and when, and what the outputs hold.
+std::string step_failure_message(const Simulation& sim, const StepReport& failure) {
+  const long done = sim.step_count;
+  char t[32];
+  std::snprintf(t, sizeof t, "%.4g", sim.time + sim.scene.h);
+  return "step " + std::to_string(done + 1) + " failed: " + step_status_name(failure.status) +
+         ": " + failure.message + " (t = " + t + " s); outputs hold steps 0.." +
+         std::to_string(done);
 }
 
 int run_simulate(const SimulateOptions& opt) {
@@ -48,7 +78,7 @@ int run_simulate(const SimulateOptions& opt) {
   // Check every output before the first step: a long run must not fail at its end.
   AtomicFileWriter csv_file;
   if (!opt.csv_path.empty()) {
-    if (auto e = check_output_file(opt.csv_path, opt.scene.input_files()))
+    if (auto e = check_output_files({opt.csv_path}, opt.scene.input_files()))
       return fail(e.exit_code, e.message);
     if (auto e = csv_file.open(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
@@ -89,12 +119,7 @@ int run_simulate(const SimulateOptions& opt) {
     total_iterations += r.newton_iterations;
     total_ms += r.wall_ms;
     if (obj_error = write_obj(); !obj_error.empty()) break;
-    const auto det = triangle_det_f(sim);
-    const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
-    const double gap = min_plane_gap(sim);
-    csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual
-        << "," << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0)
-        << "," << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
+    write_csv_row(csv, sim, r);
     if (auto e = flush_csv(false); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
   // The table is complete for the steps kept, also after a failure or an interruption.
@@ -110,22 +135,9 @@ int run_simulate(const SimulateOptions& opt) {
                 obj_error + (kept >= 0 ? "; outputs hold steps 0.." + std::to_string(kept) : ""));
   }
   const long done = sim.step_count;
-  const auto det = triangle_det_f(sim);
-  const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
-  std::printf(
-      "%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, det F in [%.4f, "
-      "%.4f]\n",
-      sim.scene.name.c_str(), done, sim.time, done ? double(total_iterations) / done : 0.0,
-      done ? total_ms / done : 0.0, *lo, *hi);
-  flush_standard_output();
-  if (failure.status != StepStatus::Ok) {
-    char t[32];
-    std::snprintf(t, sizeof t, "%.4g", sim.time + sim.scene.h);
-    return fail(exit_code::kRunFailed, "step " + std::to_string(done + 1) +
-                                           " failed: " + step_status_name(failure.status) + ": " +
-                                           failure.message + " (t = " + t +
-                                           " s); outputs hold steps 0.." + std::to_string(done));
-  }
+  print_summary(sim, total_iterations, total_ms);
+  if (failure.status != StepStatus::Ok)
+    return fail(exit_code::kRunFailed, step_failure_message(sim, failure));
   if (interrupted())
     return fail(interrupted_exit_code(), "interrupted after step " + std::to_string(done) +
                                              "; outputs hold steps 0.." + std::to_string(done));
@@ -135,25 +147,24 @@ int run_simulate(const SimulateOptions& opt) {
 }  // namespace
 
 void register_simulate_command(CLI::App& app, int& exit_code) {
-  auto opt = std::make_shared<SimulateOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("simulate", "step a scene without drawing; write CSV and OBJ files");
-  opt->scene.add_to(cmd);
-  cmd->add_option("--steps", opt->steps, "number of time steps (0 to 100000000)")
+  auto [cmd, opt] = add_command<SimulateOptions>(
+      app, exit_code, "simulate", "step a scene without drawing; write CSV and OBJ files",
+      run_simulate);
+  opt.scene.add_to(cmd);
+  cmd->add_option("--steps", opt.steps, "number of time steps (0 to 100000000)")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000000));
   cmd->add_option(
-         "--obj", opt->obj_dir,
+         "--obj", opt.obj_dir,
          "write DIR/<k>.obj after k steps (k = 0 is the initial mesh); DIR must be empty or new")
       ->type_name("DIR")
       ->check(non_empty_path());
-  cmd->add_option("--csv", opt->csv_path,
+  cmd->add_option("--csv", opt.csv_path,
                   "write one row per step: step,t,newton_iters,residual,energy,min_det_F,max_det_F,"
                   "min_gap,ceiling_y,wall_ms")
       ->type_name("FILE")
       ->check(non_empty_path());
-  cmd->add_flag("--force", opt->force, "write into a non-empty --obj directory");
-  cmd->callback([opt, &exit_code] { exit_code = run_simulate(*opt); });
+  cmd->add_flag("--force", opt.force, "write into a non-empty --obj directory");
 }
 
 }  // namespace invfree

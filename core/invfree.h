@@ -2,12 +2,13 @@
 // and read the state back. The solver's pieces (core/solver, core/potential, core/linalg)
 // stay behind `step`.
 //
-//   invfree::SceneDef scene = *invfree::find_builtin_scene("compress");
+//   invfree::SceneDef scene;  // the defaults are the reference demo, `compress`
 //   invfree::Simulation sim = invfree::make_simulation(scene);
 //   for (int k = 0; k < 100; ++k) invfree::step(sim);
 //
-// Scene files (TOML) are read by the separate invfree_scene_io library
-// (scene_io/scene_file.h), which the core never includes.
+// Scene files (TOML) and the built-in scenes (assets/scenes/) are read by the separate
+// invfree_scene_io library (scene_io/scene_file.h, scene_io/builtin_scenes.h), which the
+// core never includes.
 #pragma once
 
 #include "scene/initial_state.h"

@@ -1,14 +1,22 @@
-// A running simulation: the scene, its mesh, the state (positions, velocities, ceiling,
-// time) and the solver's reusable workspace. `step` advances one time step by implicit
-// Euler (projected Newton on the incremental potential) or symplectic Euler, checks the
+// A running simulation: the scene, its mesh, the state and the solver's private
+// workspace. `step` advances one time step by implicit Euler (projected Newton on the
+// incremental potential, core/solver/newton.h) or symplectic Euler, checks the
 // invariants, and leaves the state untouched when the step fails.
+// The state is every value a step reads besides the scene and the mesh: x, v, the
+// ceiling's actual and nominal heights, its penalty stiffness (the warm start of the next
+// step's penalty), time and step count. Copying these fields into a simulation of the same
+// scene restarts the run there; the result is bit-identical when the linear solve is
+// direct, and within Newton's tolerance with PCG, whose reused factor (workspace) is not
+// part of the state.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "potential/pull_spring.h"
 #include "scene/scene.h"
-#include "solver/newton.h"
+#include "solver/step_status.h"
 
 namespace invfree {
 
@@ -30,18 +38,12 @@ struct StepReport {
   int factorizations = 0;
   int pcg_iterations = 0;
   int energy_evaluations = 0;
-  int stopped_nodes = 0;  // Newton's safeguards at work (core/newton.h)
+  int stopped_nodes = 0;  // Newton's safeguards at work (solver/newton.h)
   int expanded_steps = 0;
   int penalty_doublings = 0;  // the ceiling's penalty doubled (converged short of the target)
 };
 
-// A spring pulling one node toward a target (the live window's grab), on while dragging.
-struct PullSpring {
-  bool on = false;
-  int node = 0;
-  Vec2 target = Vec2::Zero();
-  double stiffness = 0.0;  // N/m
-};
+struct StepWorkspace;  // solver/step_workspace.h
 
 struct Simulation {
   SceneDef scene;
@@ -49,17 +51,21 @@ struct Simulation {
   std::vector<double> node_mass;
   double ceiling_mass = 0.0;
   // State.
-  VecX x, v;               // 2N each
-  double ceiling_y = 0.0;  // actual height (within tol * h of ceiling_nominal)
-  double ceiling_nominal = 0.0;
+  VecX x, v;                       // 2N each
+  double ceiling_y = 0.0;          // actual height (within tol * h of ceiling_nominal)
+  double ceiling_nominal = 0.0;    // prescribed height
+  double ceiling_stiffness = 0.0;  // the last step's penalty stiffness (0: none yet)
   double time = 0.0;
   long step_count = 0;
-  PullSpring pull;  // input: applied by every step while on
-  // Solver workspace (sparsity pattern and symbolic factorisation, built once per mesh)
-  // and the step's scratch vectors: a step allocates nothing.
-  NewtonWorkspace workspace;
-  StepProblem problem;
-  VecX z, x_new, v_new;
+  // Input: the live window's grab, applied by every step while on.
+  PullSpring pull;
+  // The solver's workspace (private; built once per mesh).
+  std::unique_ptr<StepWorkspace> workspace;
+
+  Simulation();
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+  ~Simulation();
 };
 
 // Builds a simulation from a validated scene (see validate_scene).
@@ -67,12 +73,18 @@ Simulation make_simulation(const SceneDef& scene);
 StepReport step(Simulation& sim);
 
 // Applies new material/solver settings from `scene` without touching the state; rebuilds
-// the mesh (and restarts from the initial state) only when the mesh definition changed.
+// the mesh (and restarts from the initial state) when needs_new_mesh(sim.scene, scene).
 void update_scene(Simulation& sim, const SceneDef& scene);
+// True when going from `old` to `next` changes the mesh, the masses or the unknowns (the
+// ceiling's), so that the simulation must be built anew.
+bool needs_new_mesh(const SceneDef& old, const SceneDef& next);
 
 // Measurements of the current state.
 std::vector<double> triangle_det_f(const Simulation& sim);
 double min_plane_gap(const Simulation& sim);  // +inf without planes
 double total_energy(const Simulation& sim);   // kinetic + elastic + gravity (for stability checks)
+// The linear solver that runs: "ldlt", "cholmod" or "pcg+ldlt" ("" before the first
+// implicit step's setup).
+const char* linear_solver_backend(const Simulation& sim);
 
 }  // namespace invfree

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Builds the release configuration and runs the main job: renders the default scene
-# (`compress`, 300 frames = 3 s at h = 0.01) offscreen to out/frames/frame_NNNNNN.png.
-# No display is needed. A rerun overwrites the frames (--force).
+# The main job on a fresh Debian 12 machine: installs the packages that are missing
+# (scripts/install-deps.sh: as root directly, otherwise through sudo), builds the release
+# configuration and renders the default scene (`compress`, 300 frames = 3 s at h = 0.01)
+# offscreen to out/frames/frame_NNNNNN.png. No display is needed. A rerun overwrites the
+# frames (--force).
+#   bash scripts/build-and-run.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
 cmake --preset release >/dev/null
 cmake --build --preset release
 mkdir -p out

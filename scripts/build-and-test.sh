@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Builds invfree and runs the whole test suite, as CI does (.ci/run):
+# Installs what is missing, builds invfree and runs the whole test suite, as CI does
+# (.ci/run calls this script):
+#   0. scripts/install-deps.sh (as root directly, otherwise through sudo)
 #   1. release build, every test (ctest)
 #   2. libFuzzer over the scene parser and --set overrides for INVFREE_FUZZ_SECONDS (60)
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build (preset "sanitize": -O1, assertions on), every test again
 # INVFREE_CI_STAGES picks stages (default "release,fuzz,sanitize"), e.g.
-#   INVFREE_CI_STAGES=release scripts/build-and-test.sh      # the quick local check
+#   INVFREE_CI_STAGES=release bash scripts/build-and-test.sh    # the quick local check
 set -euo pipefail
 cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
 stages=",${INVFREE_CI_STAGES:-release,fuzz,sanitize},"
 start=$SECONDS
 stage() { echo "=== $1 (at $((SECONDS - start)) s)"; }

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages invfree needs (only those missing). Run as root or
-# through sudo. Everything comes from Debian's archive; nothing is downloaded at build time.
+# Installs the Debian 12 packages invfree needs (only those missing). As root it calls
+# apt-get directly (a fresh Debian root shell has no sudo); as any other user through sudo.
+# scripts/build-and-run.sh and scripts/build-and-test.sh run it first. Everything comes
+# from Debian's archive; nothing is downloaded at build time.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
@@ -23,7 +25,13 @@ if [ ${#missing[@]} -eq 0 ]; then
   exit 0
 fi
 SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+if [ "$(id -u)" -ne 0 ]; then
+  if ! command -v sudo >/dev/null; then
+    echo "install-deps: missing ${missing[*]}; run as root or install sudo" >&2
+    exit 1
+  fi
+  SUDO="sudo"
+fi
 echo "install-deps: installing ${missing[*]}"
 $SUDO apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"

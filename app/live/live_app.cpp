@@ -73,9 +73,13 @@ Image image_from_bottom_up(const std::vector<std::uint8_t>& rgba, int w, int h) 
 }  // namespace
 
 bool display_available() {
+#ifdef __EMSCRIPTEN__
+  return true;  // the browser's canvas
+#else
   const char* x = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
   return (x && *x) || (w && *w);
+#endif
 }
 
 struct LiveAppImpl {
@@ -341,27 +345,44 @@ struct LiveAppImpl {
     return image_from_bottom_up(read_window_bottom_up(), renderer->width(), renderer->height());
   }
 
-  void frame(const Injection* inject, Image* capture) {
-    activate();
-    glfwPollEvents();
-    resize_if_needed();
+  // This frame's simulation steps (none when paused); frame() waits for them before it
+  // returns.
+  std::future<void> start_steps() {
+    if (!controller->playing()) return {};
+#ifdef __EMSCRIPTEN__
+    // The web page has no threads (-pthread would need cross-origin isolation headers from
+    // the server): the steps run here, on the main thread, before the picture is drawn;
+    // the n_seg slider's maximum keeps them within a frame (docs/web.md).
+    controller->advance_frame();
+    return {};
+#else
+    return std::async(std::launch::async, [this] { controller->advance_frame(); });
+#endif
+  }
+
+  // A scripted frame's input (tests): the mouse, held keys and typed text, as if from GLFW.
+  void inject_input(const Injection& inject) {
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = ImVec2(inject.x, inject.y);
+    for (int b = 0; b < 3; ++b) io.MouseDown[b] = inject.down[b];
+    io.MouseWheel += inject.wheel;
+    for (int k : injected_keys) io.KeysDown[k] = false;
+    injected_keys.clear();
+    for (int k : inject.keys) {
+      if (k < 0 || k >= static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) continue;
+      io.KeysDown[k] = true;
+      injected_keys.push_back(k);
+    }
+    io.KeyCtrl = inject.ctrl;
+    for (char c : inject.text) io.AddInputCharacter(static_cast<unsigned char>(c));
+  }
+
+  // The ImGui frame: input, the panel and what it asks for, the help overlay, the banners
+  // over the picture and the grab markers.
+  void build_ui(const Injection* inject) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
-    if (inject) {
-      ImGuiIO& io = ImGui::GetIO();
-      io.MousePos = ImVec2(inject->x, inject->y);
-      for (int b = 0; b < 3; ++b) io.MouseDown[b] = inject->down[b];
-      io.MouseWheel += inject->wheel;
-      for (int k : injected_keys) io.KeysDown[k] = false;
-      injected_keys.clear();
-      for (int k : inject->keys) {
-        if (k < 0 || k >= static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) continue;
-        io.KeysDown[k] = true;
-        injected_keys.push_back(k);
-      }
-      io.KeyCtrl = inject->ctrl;
-      for (char c : inject->text) io.AddInputCharacter(static_cast<unsigned char>(c));
-    }
+    if (inject) inject_input(*inject);
     ImGui::NewFrame();
     handle_keys();
     handle_mouse();
@@ -387,9 +408,14 @@ struct LiveAppImpl {
                   static_cast<float>((L.plot.y + L.plot.h) / ps)});
     draw_grab_markers();
     ImGui::Render();
+  }
 
-    // The picture: the shared renderer's frame with the live camera, drawn straight into
-    // the window's back buffer under everything ImGui draws.
+  // The picture: the shared renderer's frame with the live camera, drawn straight into the
+  // window's back buffer under everything ImGui draws; a new state goes to the recording.
+  // When playing, the next state is computed meanwhile (the GL work reads only the copied
+  // state): on two cores the step and the renderer (llvmpipe's rasterizer threads too)
+  // then overlap instead of queueing. Returns that computation, to be waited for.
+  std::future<void> draw_picture() {
     const render::Camera cam{view.pixels_per_metre, view.to_screen(Vec2::Zero())};
     render::DrawOptions draw_options;
     draw_options.camera = cam;
@@ -403,9 +429,7 @@ struct LiveAppImpl {
     // The next state is computed while this frame is drawn, rasterized and presented (the
     // GL work below reads only the copied state): on two cores the step and the renderer
     // (llvmpipe's rasterizer threads too) then overlap instead of queueing.
-    std::future<void> stepping;
-    if (controller->playing())
-      stepping = std::async(std::launch::async, [this] { controller->advance_frame(); });
+    std::future<void> stepping = start_steps();
     renderer->draw(state, draw_options);
     const int w = renderer->width(), h = renderer->height();
     // A recording holds each state once (from the initial one), not idle repeats.
@@ -418,21 +442,21 @@ struct LiveAppImpl {
         ++record_frame;
       }
     }
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl.Viewport(0, 0, w, h);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    return stepping;
+  }
 
-    if (capture) *capture = read_window();
-    if (screenshot_requested) {
-      screenshot_requested = false;
-      const std::string path = next_screenshot_path(options.screenshot_dir);
-      if (const std::string e = write_png(path, capture ? *capture : read_window()); !e.empty())
-        say("invfree: live: screenshot failed: " + e);
-      else
-        say("screenshot: " + path);
-    }
-    glfwSwapBuffers(window);
-    if (stepping.valid()) stepping.get();  // the controller is whole again when frame() returns
+  // The screenshot asked for (Ctrl+P, the button), from `capture` when this frame has one.
+  void save_screenshot(const Image* capture) {
+    screenshot_requested = false;
+    const std::string path = next_screenshot_path(options.screenshot_dir);
+    if (const std::string e = write_png(path, capture ? *capture : read_window()); !e.empty())
+      say("invfree: live: screenshot failed: " + e);
+    else
+      say("screenshot: " + path);
+  }
+
+  // Frames per second over the last half second, in the window title.
+  void count_frame() {
     ++frames;
     ++fps_frames;
     const auto now = std::chrono::steady_clock::now();
@@ -446,61 +470,71 @@ struct LiveAppImpl {
       fps_start = now;
     }
   }
+
+  void frame(const Injection* inject, Image* capture) {
+    activate();
+    glfwPollEvents();
+    resize_if_needed();
+    build_ui(inject);
+    std::future<void> stepping = draw_picture();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, renderer->width(), renderer->height());
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (capture) *capture = read_window();
+    if (screenshot_requested) save_screenshot(capture);
+    glfwSwapBuffers(window);
+    if (stepping.valid()) stepping.get();  // the controller is whole again when frame() returns
+    count_frame();
+  }
 };
 
 LiveApp::LiveApp() : impl_(std::make_unique<LiveAppImpl>()) {}
 LiveApp::~LiveApp() = default;
 
-std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string* error) {
-  if (!display_available()) {
-    *error = no_window_message("no display: DISPLAY is not set");
-    return nullptr;
-  }
-  std::unique_ptr<LiveApp> app(new LiveApp());
-  LiveAppImpl& a = *app->impl_;
-  a.options = options;
+// The window with a current OpenGL 3.3 core context, and GL loaded from it. Returns "" or
+// why not (for no_window_message).
+static std::string open_window(LiveAppImpl& a, const LiveOptions& options) {
   glfwSetErrorCallback(on_glfw_error);
   g_glfw_error.clear();
-  if (!g_glfw_initialized && !glfwInit()) {
-    *error = no_window_message(g_glfw_error.empty() ? "GLFW could not start" : g_glfw_error);
-    return nullptr;
-  }
+  if (!g_glfw_initialized && !glfwInit())
+    return g_glfw_error.empty() ? "GLFW could not start" : g_glfw_error;
   g_glfw_initialized = true;
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   a.window = glfwCreateWindow(options.width, options.height, "invfree live", nullptr, nullptr);
-  if (!a.window) {
-    *error = no_window_message("no OpenGL 3.3 window: " +
-                               (g_glfw_error.empty() ? std::string("unknown") : g_glfw_error));
-    return nullptr;
-  }
+  if (!a.window)
+    return "no OpenGL 3.3 window: " +
+           (g_glfw_error.empty() ? std::string("unknown") : g_glfw_error);
   glfwMakeContextCurrent(a.window);
   glfwSwapInterval(options.vsync ? 1 : 0);
-
   const auto get_proc = reinterpret_cast<render::GlGetProcAddress>(glfwGetProcAddress);
-  if (std::string e = render::load_gl_api(get_proc, &a.gl); !e.empty()) {
-    *error = no_window_message(e);
-    return nullptr;
-  }
+  return render::load_gl_api(get_proc, &a.gl);
+}
+
+// The shared renderer at the window's framebuffer size. Multisampling only on real GPUs:
+// Mesa's software rasterizers (llvmpipe under Xvfb) shade every sample, so 4x would
+// multiply the cost of filling the frame. Returns "" or why not.
+static std::string create_renderer(LiveAppImpl& a) {
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(a.window, &fw, &fh);
-  std::string e;
-  // Multisampling only on real GPUs: Mesa's software rasterizers (llvmpipe under Xvfb)
-  // shade every sample, and 4x would cost a third of a 60 frames/s budget.
   const char* gl_renderer = reinterpret_cast<const char*>(a.gl.GetString(GL_RENDERER));
   const std::string renderer_name = gl_renderer ? gl_renderer : "";
   const bool software = renderer_name.find("llvmpipe") != std::string::npos ||
                         renderer_name.find("softpipe") != std::string::npos ||
                         renderer_name.find("swrast") != std::string::npos;
+  const auto get_proc = reinterpret_cast<render::GlGetProcAddress>(glfwGetProcAddress);
+  std::string e;
+  const int samples = a.options.samples > 0 ? a.options.samples : (software ? 1 : 4);
   a.renderer =
-      render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, software ? 1 : 4);
-  if (!a.renderer) {
-    *error = no_window_message("the renderer could not start: " + e);
-    return nullptr;
-  }
+      render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, samples);
+  return a.renderer ? "" : "the renderer could not start: " + e;
+}
 
+// Dear ImGui on the window: its context (writing no files), style, the fonts (the
+// embedded DejaVu Sans) and the GLFW and OpenGL3 backends. Returns "" or why not.
+static std::string start_imgui(LiveAppImpl& a) {
   IMGUI_CHECKVERSION();
   a.imgui = ImGui::CreateContext();
   ImGui::SetCurrentContext(a.imgui);
@@ -524,17 +558,29 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kFontSize, &cfg, ranges.Data);
   a.panel.big_font =
       io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kBigFontSize, &cfg, ranges.Data);
-  if (!ImGui_ImplGlfw_InitForOpenGL(a.window, true)) {
-    *error = no_window_message("ImGui's GLFW backend could not start");
-    return nullptr;
-  }
+  if (!ImGui_ImplGlfw_InitForOpenGL(a.window, true)) return "ImGui's GLFW backend could not start";
   a.imgui_glfw = true;
-  if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
-    *error = no_window_message("ImGui's OpenGL3 backend could not start");
+  if (!ImGui_ImplOpenGL3_Init(a.gl.opengl_es ? "#version 300 es" : "#version 330 core"))
+    return "ImGui's OpenGL3 backend could not start";
+  a.imgui_gl = true;
+  return "";
+}
+
+std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string* error) {
+  if (!display_available()) {
+    *error = no_window_message("no display: DISPLAY is not set");
     return nullptr;
   }
-  a.imgui_gl = true;
-
+  std::unique_ptr<LiveApp> app(new LiveApp());
+  LiveAppImpl& a = *app->impl_;
+  a.options = options;
+  std::string e = open_window(a, options);
+  if (e.empty()) e = create_renderer(a);
+  if (e.empty()) e = start_imgui(a);
+  if (!e.empty()) {
+    *error = no_window_message(e);
+    return nullptr;
+  }
   a.controller = std::make_unique<LiveController>(options.scenes, options.selected);
   a.controller->set_playing(!options.paused);
   a.controller->steps_per_frame = options.steps_per_frame;

@@ -24,11 +24,10 @@
 
 namespace invfree::live {
 
-// The n_seg slider's maximum: the largest mesh that still ran at >= 30 frames/s in
-// `invfree live --frames 300 --bench` under Xvfb on the project's 2-core machine, idle
-// (README, "Live classroom mode": 112 at 31.8, 33.1 and 32.4 frames/s, 116 at 31.3 and
-// 29.1). Larger meshes can still be loaded from a scene file or --set, or allowed with
-// --max-n-seg.
+// The n_seg slider's maximum: the largest mesh that runs at >= 30 frames/s under Xvfb on
+// the project's 2-core machine, idle (n_seg 112: 32-33 frames/s, 116: 29-31), measured
+// with `xvfb-run -a invfree live --frames 300 --bench --set mesh.n_seg=112`. Larger meshes
+// can still be loaded from a scene file or --set, or allowed with --max-n-seg.
 constexpr int kDefaultMaxSegments = 112;
 
 struct LiveOptions {
@@ -45,6 +44,9 @@ struct LiveOptions {
   int width = 1280, height = 720;
   int steps_per_frame = 1;
   int max_segments = kDefaultMaxSegments;
+  // Multisampling of the picture; 0: 4x, or 1x on a software rasterizer named by
+  // GL_RENDERER (a browser masks that name: the web page finds out itself).
+  int samples = 0;
   std::function<bool()> stop;  // checked every frame: true ends the run (e.g. Ctrl-C)
 };
 

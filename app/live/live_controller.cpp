@@ -85,12 +85,7 @@ bool LiveController::apply(const SceneDef& next) {
            std::to_string(stats_.inverted) + " triangle(s) are inverted now; press R (reset) first";
     return false;
   }
-  const SceneDef& old = sim_.scene;
-  const bool rebuild = old.side != next.side || old.n_seg != next.n_seg ||
-                       old.density != next.density || old.mass != next.mass ||
-                       old.jitter != next.jitter || old.seed != next.seed ||
-                       old.has_ceiling != next.has_ceiling;
-  if (rebuild) {
+  if (needs_new_mesh(sim_.scene, next)) {
     restart(next);
     note = "mesh rebuilt (n_seg = " + std::to_string(next.n_seg) +
            "); restarted from the initial state";

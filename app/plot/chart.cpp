@@ -46,15 +46,24 @@ double tick_label(Image* image, const Tick& t, double x, double y, double size, 
   return text_width(t.label, size);
 }
 
-}  // namespace
+// Where a chart's parts go (pixels) and how large its text is, all scaled by u with the
+// image (designed at 1280x800).
+struct ChartLayout {
+  int width = 0, height = 0;
+  double u = 1.0, title_size = 0, label_size = 0, tick_size = 0, legend_size = 0;
+  std::vector<std::string> title_lines;
+  bool has_legend = false;
+  PlotFrame frame;  // the plot area and the axes' ranges
+  std::vector<Tick> xticks, yticks;
+};
 
-Image render_chart(const ChartSpec& spec) {
-  const int width = std::max(spec.width, 160), height = std::max(spec.height, 120);
-  Image img = make_image(width, height, kWhite);
-  const double u = std::clamp(std::min(width / 1280.0, height / 800.0), 0.4, 4.0);
-  const double title_size = 26 * u, label_size = 19 * u, tick_size = 16 * u, legend_size = 16 * u;
-
-  // Axes from the data.
+// Axes from the data; title on top, the legend and notes in a column on the right.
+ChartLayout chart_layout(const ChartSpec& spec, int width, int height) {
+  ChartLayout c;
+  c.width = width;
+  c.height = height;
+  const double u = c.u = std::clamp(std::min(width / 1280.0, height / 800.0), 0.4, 4.0);
+  c.title_size = 26 * u, c.label_size = 19 * u, c.tick_size = 16 * u, c.legend_size = 16 * u;
   std::vector<double> xs, ys;
   for (const Series& s : spec.series)
     for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
@@ -62,58 +71,71 @@ Image render_chart(const ChartSpec& spec) {
       ys.push_back(s.y[i]);
     }
   const AxisRange xr = axis_range(xs, spec.log_x), yr = axis_range(ys, spec.log_y);
-  const std::vector<Tick> xticks = axis_ticks(xr), yticks = axis_ticks(yr);
-
-  // Layout: title on top, legend and notes in a column on the right.
-  bool has_legend = !spec.notes.empty();
-  for (const Series& s : spec.series) has_legend = has_legend || !s.label.empty();
-  const double legend_w = has_legend ? std::clamp(width * 0.25, 160.0 * u, 400.0 * u) : 0.0;
+  c.xticks = axis_ticks(xr);
+  c.yticks = axis_ticks(yr);
+  c.has_legend = !spec.notes.empty();
+  for (const Series& s : spec.series) c.has_legend = c.has_legend || !s.label.empty();
+  const double legend_w = c.has_legend ? std::clamp(width * 0.25, 160.0 * u, 400.0 * u) : 0.0;
   double y_tick_w = 0.0;
-  for (const Tick& t : yticks)
+  for (const Tick& t : c.yticks)
     if (t.labelled)
-      y_tick_w = std::max(y_tick_w, tick_label(nullptr, t, 0, 0, tick_size, Align::Right));
-  const std::vector<std::string> title_lines = wrap_text(spec.title, title_size, width - 40 * u);
-  const double top = 24 * u + title_lines.size() * title_size * 1.2 + 12 * u;
-  const double left = 24 * u + label_size * 1.4 + y_tick_w + 12 * u;
+      y_tick_w = std::max(y_tick_w, tick_label(nullptr, t, 0, 0, c.tick_size, Align::Right));
+  c.title_lines = wrap_text(spec.title, c.title_size, width - 40 * u);
+  const double top = 24 * u + c.title_lines.size() * c.title_size * 1.2 + 12 * u;
+  const double left = 24 * u + c.label_size * 1.4 + y_tick_w + 12 * u;
   const double right = width - legend_w - 30 * u;
-  const double bottom = height - (20 * u + label_size * 1.4 + tick_size * 1.6 + 10 * u);
-  const PlotFrame frame{left, top, right, bottom, xr, yr};
+  const double bottom = height - (20 * u + c.label_size * 1.4 + c.tick_size * 1.6 + 10 * u);
+  c.frame = PlotFrame{left, top, right, bottom, xr, yr};
+  return c;
+}
 
-  for (size_t i = 0; i < title_lines.size(); ++i)
-    draw_text(img, title_lines[i], width / 2.0, 24 * u + title_size * (1.2 * i + 0.85), title_size,
-              kInk, Align::Center);
-
-  // Grid, then frame, ticks and labels.
-  for (const Tick& t : xticks) {
+// The title, the grid, then the frame, the ticks with their labels and the axis labels.
+void draw_axes(Image& img, const ChartSpec& spec, const ChartLayout& c) {
+  const double u = c.u, tick_size = c.tick_size, label_size = c.label_size;
+  const PlotFrame& frame = c.frame;
+  const double left = frame.left, top = frame.top, right = frame.right, bottom = frame.bottom;
+  for (size_t i = 0; i < c.title_lines.size(); ++i)
+    draw_text(img, c.title_lines[i], c.width / 2.0, 24 * u + c.title_size * (1.2 * i + 0.85),
+              c.title_size, kInk, Align::Center);
+  for (const Tick& t : c.xticks) {
     const double px = frame.to_px_x(t.value);
     draw_line(img, {px, top}, {px, bottom}, 1.0, t.major ? kGridMajor : kGridMinor);
   }
-  for (const Tick& t : yticks) {
+  for (const Tick& t : c.yticks) {
     const double py = frame.to_px_y(t.value);
     draw_line(img, {left, py}, {right, py}, 1.0, t.major ? kGridMajor : kGridMinor);
   }
   stroke_rect(img, left, top, right, bottom, 1.2 * u, kInk);
-  for (const Tick& t : xticks) {
+  for (const Tick& t : c.xticks) {
     const double px = frame.to_px_x(t.value);
     const double len = (t.major ? 8.0 : 4.5) * u;
     draw_line(img, {px, bottom}, {px, bottom + len}, 1.2 * u, kInk);
     if (t.labelled)
       tick_label(&img, t, px, bottom + len + tick_size * 1.05, tick_size, Align::Center);
   }
-  for (const Tick& t : yticks) {
+  for (const Tick& t : c.yticks) {
     const double py = frame.to_px_y(t.value);
     const double len = (t.major ? 8.0 : 4.5) * u;
     draw_line(img, {left - len, py}, {left, py}, 1.2 * u, kInk);
     if (t.labelled)
       tick_label(&img, t, left - len - 4 * u, py + tick_size * 0.35, tick_size, Align::Right);
   }
-  draw_text(img, spec.x_label, (left + right) / 2.0, height - 20 * u, label_size, kInk,
+  draw_text(img, spec.x_label, (left + right) / 2.0, c.height - 20 * u, label_size, kInk,
             Align::Center);
   draw_text_vertical(img, spec.y_label, 20 * u + label_size, (top + bottom) / 2.0, label_size,
                      kInk);
+}
 
-  // Series: lines first (broken at skipped points), then markers on top.
-  const double line_w = 2.2 * u, marker_r = 5.0 * u;
+double line_width(const ChartLayout& c) {
+  return 2.2 * c.u;
+}
+double marker_radius(const ChartLayout& c) {
+  return 5.0 * c.u;
+}
+
+// Lines first (broken at skipped points), then markers on top.
+void draw_series(Image& img, const ChartSpec& spec, const ChartLayout& c) {
+  const PlotFrame& frame = c.frame;
   for (const Series& s : spec.series) {
     if (!s.lines) continue;
     std::vector<Point2> run;
@@ -123,7 +145,7 @@ Image render_chart(const ChartSpec& spec) {
         run.push_back({frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])});
         continue;
       }
-      if (run.size() >= 2) draw_polyline(img, run, line_w, s.color);
+      if (run.size() >= 2) draw_polyline(img, run, line_width(c), s.color);
       run.clear();
     }
   }
@@ -132,38 +154,50 @@ Image render_chart(const ChartSpec& spec) {
     if (!s.markers) continue;
     for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
       if (frame.plottable(s.x[i], s.y[i]))
-        draw_marker(img, {frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])}, marker_r, marker_for(k),
-                    s.color, kInk);
+        draw_marker(img, {frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])}, marker_radius(c),
+                    marker_for(k), s.color, kInk);
   }
+}
 
-  // Legend and notes.
-  if (has_legend) {
-    const double lx = right + 24 * u, lw = width - lx - 16 * u;
-    double ly = top + legend_size;
-    const double swatch = 34 * u;
-    for (size_t k = 0; k < spec.series.size(); ++k) {
-      const Series& s = spec.series[k];
-      if (s.label.empty()) continue;
-      const auto lines = wrap_text(s.label, legend_size, lw - swatch - 10 * u);
-      const double cy = ly - legend_size * 0.35;
-      if (s.lines) draw_line(img, {lx, cy}, {lx + swatch, cy}, line_w, s.color);
-      if (s.markers)
-        draw_marker(img, {lx + swatch / 2.0, cy}, marker_r, marker_for(k), s.color, kInk);
-      for (size_t i = 0; i < lines.size(); ++i)
-        draw_text(img, lines[i], lx + swatch + 10 * u, ly + i * legend_size * 1.25, legend_size,
-                  kInk);
-      ly += (lines.size() * 1.25 + 0.6) * legend_size;
-    }
-    if (!spec.notes.empty()) ly += legend_size * 0.8;
-    const double note_size = legend_size * 0.92;
-    for (const std::string& note : spec.notes) {
-      for (const std::string& line : wrap_text(note, note_size, lw)) {
-        draw_text(img, line, lx, ly, note_size, kMuted);
-        ly += note_size * 1.3;
-      }
-      ly += note_size * 0.5;
-    }
+// The legend (a swatch and the label per labelled series), then the notes, word-wrapped.
+void draw_legend(Image& img, const ChartSpec& spec, const ChartLayout& c) {
+  const double u = c.u, legend_size = c.legend_size;
+  const double lx = c.frame.right + 24 * u, lw = c.width - lx - 16 * u;
+  double ly = c.frame.top + legend_size;
+  const double swatch = 34 * u;
+  for (size_t k = 0; k < spec.series.size(); ++k) {
+    const Series& s = spec.series[k];
+    if (s.label.empty()) continue;
+    const auto lines = wrap_text(s.label, legend_size, lw - swatch - 10 * u);
+    const double cy = ly - legend_size * 0.35;
+    if (s.lines) draw_line(img, {lx, cy}, {lx + swatch, cy}, line_width(c), s.color);
+    if (s.markers)
+      draw_marker(img, {lx + swatch / 2.0, cy}, marker_radius(c), marker_for(k), s.color, kInk);
+    for (size_t i = 0; i < lines.size(); ++i)
+      draw_text(img, lines[i], lx + swatch + 10 * u, ly + i * legend_size * 1.25, legend_size,
+                kInk);
+    ly += (lines.size() * 1.25 + 0.6) * legend_size;
   }
+  if (!spec.notes.empty()) ly += legend_size * 0.8;
+  const double note_size = legend_size * 0.92;
+  for (const std::string& note : spec.notes) {
+    for (const std::string& line : wrap_text(note, note_size, lw)) {
+      draw_text(img, line, lx, ly, note_size, kMuted);
+      ly += note_size * 1.3;
+    }
+    ly += note_size * 0.5;
+  }
+}
+
+}  // namespace
+
+Image render_chart(const ChartSpec& spec) {
+  const int width = std::max(spec.width, 160), height = std::max(spec.height, 120);
+  Image img = make_image(width, height, kWhite);
+  const ChartLayout layout = chart_layout(spec, width, height);
+  draw_axes(img, spec, layout);
+  draw_series(img, spec, layout);
+  if (layout.has_legend) draw_legend(img, spec, layout);
   return img;
 }
 

@@ -11,18 +11,17 @@
 #define STBTT_STATIC
 #include <stb/stb_truetype.h>
 
+#include "app/embed_section.h"
+
 // The font file, placed in .rodata by the assembler (INVFREE_CHART_FONT is its absolute
 // path, set by app/plot/CMakeLists.txt).
-asm(".pushsection .rodata\n"
-    ".balign 16\n"
+asm(INVFREE_RODATA_OPEN(invfree_chart_font_begin) ".balign 16\n"
     ".globl invfree_chart_font_begin\n"
     "invfree_chart_font_begin:\n"
-    ".incbin \"" INVFREE_CHART_FONT
-    "\"\n"
+    ".incbin \"" INVFREE_CHART_FONT "\"\n" INVFREE_RODATA_SIZE(invfree_chart_font_begin)
     ".globl invfree_chart_font_end\n"
     "invfree_chart_font_end:\n"
-    ".byte 0\n"
-    ".popsection\n");
+    ".byte 0\n" INVFREE_RODATA_SIZE(invfree_chart_font_end) INVFREE_RODATA_CLOSE);
 extern "C" const unsigned char invfree_chart_font_begin[];
 extern "C" const unsigned char invfree_chart_font_end[];
 

@@ -10,10 +10,10 @@
 
 namespace {
 
-// stb_image_write's own deflate is a simple one (fixed Huffman codes, short hash chains)
-// that spends ~40 ms on a 1280x720 frame; zlib at level 1 takes ~10 ms and makes smaller
-// files. stb documents this hook (STBIW_ZLIB_COMPRESS); `quality` is
-// stbi_write_png_compression_level. The buffer must come from malloc (stb frees it).
+// stb_image_write's own deflate is a simple one (fixed Huffman codes, short hash chains):
+// slower than zlib at level 1 on these frames, and its files are larger. stb documents this hook
+// (STBIW_ZLIB_COMPRESS); `quality` is stbi_write_png_compression_level. The buffer must come from
+// malloc (stb frees it).
 unsigned char* zlib_compress(unsigned char* data, int data_len, int* out_len, int quality) {
   uLongf size = compressBound(static_cast<uLong>(data_len));
   auto* out = static_cast<unsigned char*>(std::malloc(size));

@@ -1,6 +1,7 @@
 #include "app/render/gl_api.h"
 
 #include <cstdio>
+#include <cstring>
 
 namespace invfree::render {
 
@@ -15,10 +16,14 @@ std::string load_gl_api(GlGetProcAddress get_proc_address, GlApi* api) {
   // version the context really provides.
   const auto* version = reinterpret_cast<const char*>(loaded.GetString(GL_VERSION));
   int major = 0, minor = 0;
-  if (version == nullptr || std::sscanf(version, "%d.%d", &major, &minor) != 2)
+  // "OpenGL ES 3.0 ..." for an ES context (WebGL 2 reports "OpenGL ES 3.0 (WebGL 2.0 ...)").
+  loaded.opengl_es = version != nullptr && std::strncmp(version, "OpenGL ES ", 10) == 0;
+  const char* number = loaded.opengl_es ? version + 10 : version;
+  if (version == nullptr || std::sscanf(number, "%d.%d", &major, &minor) != 2)
     return "no current OpenGL context (glGetString(GL_VERSION) failed)";
-  if (major < 3 || (major == 3 && minor < 3))
-    return std::string("OpenGL 3.3 or newer is needed, the context provides ") + version;
+  if (loaded.opengl_es ? major < 3 : (major < 3 || (major == 3 && minor < 3)))
+    return std::string("OpenGL 3.3 or OpenGL ES 3.0 or newer is needed, the context provides ") +
+           version;
   *api = loaded;
   return "";
 }

@@ -9,7 +9,9 @@
 // gl* symbol: it calls only through this table, loaded from whichever context is current,
 // and the offscreen context dlopens libOSMesa privately (see offscreen_context.h).
 //
-// Needs an OpenGL 3.3 context, core or compatibility profile.
+// Needs an OpenGL 3.3 context, core or compatibility profile, or OpenGL ES 3.0 (WebGL 2:
+// the functions above are all in ES 3.0, and the shaders are switched to GLSL ES, see
+// shader_sources.h).
 #pragma once
 
 #include <GL/glcorearb.h>
@@ -87,6 +89,7 @@ struct GlApi {
 #define INVFREE_GL_MEMBER(type, name) type name = nullptr;
   INVFREE_GL_FUNCTIONS(INVFREE_GL_MEMBER)
 #undef INVFREE_GL_MEMBER
+  bool opengl_es = false;  // an OpenGL ES 3.x context (WebGL 2 in the web build)
 };
 
 // Fills `api` from the current context. Returns "" or a one-line error naming the first

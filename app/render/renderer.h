@@ -67,8 +67,8 @@ struct DrawOptions {
   std::optional<Camera> camera;
   // Where the frame goes: the renderer's own framebuffer (read_pixels) by default, or this
   // GL framebuffer (0: a window's back buffer) of the renderer's size. A window drawn
-  // into directly needs no full-frame copy (a textured pass: ~2.5 ms at 720p under
-  // llvmpipe); read_pixels then keeps the frame drawn before.
+  // into directly needs no full-frame copy (a textured pass over every pixel, which a
+  // software rasterizer pays in full); read_pixels then keeps the frame drawn before.
   std::optional<unsigned> framebuffer;
 };
 
@@ -80,8 +80,7 @@ class Renderer {
   // shaders, the font atlas and a width x height framebuffer. Returns null and a
   // one-line *error on failure. `max_samples` > 1 adds multisampling on top of the
   // analytic antialiasing; the default (1) is what `invfree render` and the goldens use,
-  // and what makes a live frame equal an offscreen one (under llvmpipe 4x also costs
-  // ~20 ms per 1280x720 frame).
+  // and what makes a live frame equal an offscreen one.
   static std::unique_ptr<Renderer> create(GlGetProcAddress get_proc_address, int width, int height,
                                           std::string* error, int max_samples = 1);
   ~Renderer();

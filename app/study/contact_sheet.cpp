@@ -67,6 +67,66 @@ void draw_frame(Image& image, const Frame& f, int x0, int y0, int size) {
   blit(image, cell, x0, y0);
 }
 
+namespace {
+
+// One run's cell at (x, y): its frame (or "n/a" and why), the verdict and when it ended.
+void draw_cell(Image& img, const StabilityCell& c, int x, int y, int cell) {
+  if (c.verdict == Verdict::NotApplicable) {
+    fill_rect(img, x, y, x + cell, y + cell, {0.96f, 0.96f, 0.96f});
+    draw_text(img, "n/a", x + cell / 2.0, y + cell / 2.0, 22, kMuted, Align::Center);
+    const auto why = wrap_text(
+        c.message.find("inverted") != std::string::npos ? "cannot start inverted" : "cannot start",
+        13, cell - 10);
+    for (size_t i = 0; i < why.size(); ++i)
+      draw_text(img, why[i], x + cell / 2.0, y + cell / 2.0 + 22 + 16.0 * i, 13, kMuted,
+                Align::Center);
+  } else {
+    draw_frame(img, c.frame, x, y, cell);
+  }
+  const bool ok = c.verdict == Verdict::Ok;
+  const std::string verdict = verdict_name(c.verdict);
+  draw_text(img, verdict, x + cell / 2.0, y + cell + 17, 16,
+            ok ? kInk : (c.verdict == Verdict::NotApplicable ? kMuted : kFail), Align::Center);
+  char sub[64];
+  if (c.verdict == Verdict::NotApplicable)
+    sub[0] = 0;
+  else if (ok)
+    std::snprintf(sub, sizeof sub, "t = %.2f s", c.frame.time);
+  else
+    std::snprintf(sub, sizeof sub, "step %ld (t = %.3g s)", c.fail_step, c.fail_step * c.h);
+  draw_text(img, sub, x + cell / 2.0, y + cell + 33, 12, kMuted, Align::Center);
+}
+
+// The det F colour bar with its ticks at (bx, by), and the det F <= 0 swatch beside it.
+void draw_color_bar(Image& img, int bx, int by) {
+  const int bw = 520, bh = 18;
+  draw_text(img, "det F", 20, by + 14, 16, kInk);
+  for (int i = 0; i < bw; ++i) {
+    const double t = -1.0 + 2.0 * (i + 0.5) / bw;
+    fill_rect(img, bx + i, by, bx + i + 1, by + bh, diverging_color(t));
+  }
+  stroke_rect(img, bx, by, bx + bw, by + bh, 1.0, kInk);
+  const double ticks[] = {1.0 / kDetFRange, 0.5, 1.0, 2.0, kDetFRange};
+  for (double d : ticks) {
+    const double xpos = bx + (det_f_scale_position(d) + 1.0) / 2.0 * bw;
+    draw_line(img, {xpos, double(by + bh)}, {xpos, by + bh + 5.0}, 1.0, kInk);
+    char label[32];
+    std::snprintf(label, sizeof label,
+                  d == 1.0 / kDetFRange ? "\u2264 %.3g"
+                  : d == kDetFRange     ? "\u2265 %.3g"
+                                        : "%.3g",
+                  d);
+    draw_text(img, label, xpos, by + bh + 21, 14, kInk, Align::Center);
+  }
+  fill_rect(img, bx + bw + 40, by, bx + bw + 80, by + bh, kInvertedColor);
+  stroke_rect(img, bx + bw + 40, by, bx + bw + 80, by + bh, 1.0, kInk);
+  draw_text(img, "det F \u2264 0 (inverted; ringed)", bx + bw + 90, by + 14, 15, kInk);
+  draw_text(img, "compressed", bx, by - 6, 13, kMuted);
+  draw_text(img, "stretched", bx + bw, by - 6, 13, kMuted, Align::Right);
+}
+
+}  // namespace
+
 Image contact_sheet(const StabilityResult& r) {
   const int cell = 150, gap = 10, caption = 40;
   const int left = 230, top = 130, bar_h = 90;
@@ -96,61 +156,9 @@ Image contact_sheet(const StabilityResult& r) {
     draw_text(img, r.methods[m], 20, y + 40, 17, kInk);
     for (size_t i = 0; i < lines.size(); ++i)
       draw_text(img, lines[i], 20, y + 64 + 19.0 * i, 14, kMuted);
-    for (int k = 0; k < cols; ++k) {
-      const StabilityCell& c = r.at(m, k);
-      const int x = left + k * (cell + gap);
-      if (c.verdict == Verdict::NotApplicable) {
-        fill_rect(img, x, y, x + cell, y + cell, {0.96f, 0.96f, 0.96f});
-        draw_text(img, "n/a", x + cell / 2.0, y + cell / 2.0, 22, kMuted, Align::Center);
-        const auto why =
-            wrap_text(c.message.find("inverted") != std::string::npos ? "cannot start inverted"
-                                                                      : "cannot start",
-                      13, cell - 10);
-        for (size_t i = 0; i < why.size(); ++i)
-          draw_text(img, why[i], x + cell / 2.0, y + cell / 2.0 + 22 + 16.0 * i, 13, kMuted,
-                    Align::Center);
-      } else {
-        draw_frame(img, c.frame, x, y, cell);
-      }
-      const bool ok = c.verdict == Verdict::Ok;
-      const std::string verdict = verdict_name(c.verdict);
-      draw_text(img, verdict, x + cell / 2.0, y + cell + 17, 16,
-                ok ? kInk : (c.verdict == Verdict::NotApplicable ? kMuted : kFail), Align::Center);
-      char sub[64];
-      if (c.verdict == Verdict::NotApplicable)
-        sub[0] = 0;
-      else if (ok)
-        std::snprintf(sub, sizeof sub, "t = %.2f s", c.frame.time);
-      else
-        std::snprintf(sub, sizeof sub, "step %ld (t = %.3g s)", c.fail_step, c.fail_step * c.h);
-      draw_text(img, sub, x + cell / 2.0, y + cell + 33, 12, kMuted, Align::Center);
-    }
+    for (int k = 0; k < cols; ++k) draw_cell(img, r.at(m, k), left + k * (cell + gap), y, cell);
   }
-  // det F colour bar.
-  const int by = height - bar_h + 30, bx = left, bw = 520, bh = 18;
-  draw_text(img, "det F", 20, by + 14, 16, kInk);
-  for (int i = 0; i < bw; ++i) {
-    const double t = -1.0 + 2.0 * (i + 0.5) / bw;
-    fill_rect(img, bx + i, by, bx + i + 1, by + bh, diverging_color(t));
-  }
-  stroke_rect(img, bx, by, bx + bw, by + bh, 1.0, kInk);
-  const double ticks[] = {1.0 / kDetFRange, 0.5, 1.0, 2.0, kDetFRange};
-  for (double d : ticks) {
-    const double xpos = bx + (det_f_scale_position(d) + 1.0) / 2.0 * bw;
-    draw_line(img, {xpos, double(by + bh)}, {xpos, by + bh + 5.0}, 1.0, kInk);
-    char label[32];
-    std::snprintf(label, sizeof label,
-                  d == 1.0 / kDetFRange ? "\u2264 %.3g"
-                  : d == kDetFRange     ? "\u2265 %.3g"
-                                        : "%.3g",
-                  d);
-    draw_text(img, label, xpos, by + bh + 21, 14, kInk, Align::Center);
-  }
-  fill_rect(img, bx + bw + 40, by, bx + bw + 80, by + bh, kInvertedColor);
-  stroke_rect(img, bx + bw + 40, by, bx + bw + 80, by + bh, 1.0, kInk);
-  draw_text(img, "det F \u2264 0 (inverted; ringed)", bx + bw + 90, by + 14, 15, kInk);
-  draw_text(img, "compressed", bx, by - 6, 13, kMuted);
-  draw_text(img, "stretched", bx + bw, by - 6, 13, kMuted, Align::Right);
+  draw_color_bar(img, left, height - bar_h + 30);
   return img;
 }
 

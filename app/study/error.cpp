@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "app/plot/loglog_fit.h"
+
 namespace invfree {
 
 double rms_position_error(const std::vector<VecX>& run, const std::vector<VecX>& reference,
@@ -36,20 +38,7 @@ std::vector<int> nested_node_map(int n_coarse, int n_fine) {
 }
 
 double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int n = 0;
-  for (size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
-    if (!(x[i] > 0.0 && y[i] > 0.0 && std::isfinite(x[i]) && std::isfinite(y[i]))) continue;
-    const double a = std::log(x[i]), b = std::log(y[i]);
-    sx += a;
-    sy += b;
-    sxx += a * a;
-    sxy += a * b;
-    ++n;
-  }
-  const double denom = n * sxx - sx * sx;
-  if (n < 2 || !(std::abs(denom) > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-  return (n * sxy - sx * sy) / denom;
+  return fit_loglog(x, y).slope;
 }
 
 }  // namespace invfree

@@ -3,8 +3,8 @@
 // where node i of the run is compared with node map[i] of the reference (identity when
 // the map is empty): a run on a coarser mesh is compared at the nodes it shares with a
 // finer reference. NaN when the runs do not have the same number of samples.
-// loglog_slope: least-squares slope of log y against log x (points with x, y <= 0 or
-// non-finite are skipped; NaN with fewer than two points).
+// loglog_slope: least-squares slope of log y against log x (app/plot/loglog_fit.h: points
+// with x, y <= 0 or non-finite are skipped; NaN with fewer than two points).
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-// The methods the study and the stability sweep compare (issue 5). Each is nothing but a
+// The methods the study and the stability sweep compare. Each is nothing but a
 // set of scene settings, written as the `--set section.key=value` overrides a user would
 // type, applied through the scene-file parser: no method has a code path of its own.
 //   lecture            neo-Hookean, diagonal-space PSD projection, inversion-free filter

@@ -1,25 +1,17 @@
 #include "app/study/stability.h"
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
+#include "app/format_number.h"
 #include "app/study/methods.h"
 #include "app/study/stress_scenes.h"
 
 namespace invfree {
 
-namespace {
+namespace {}  // namespace
 
-std::string fmt(double v, const char* f = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-}  // namespace
-
-StabilityResult run_stability(const StabilityOptions& options) {
+StabilityResult run_stability(const SweepOptions& options) {
   StabilityResult result;
   for (const Method& m : study_methods()) {
     result.methods.push_back(m.name);
@@ -35,7 +27,7 @@ StabilityResult run_stability(const StabilityOptions& options) {
   }
   for (const Method& m : study_methods()) {
     for (size_t k = 0; k < scenes.size(); ++k) {
-      if (options.stop && options.stop()) {
+      if (options.stop_requested()) {
         result.stopped = true;
         return result;
       }
@@ -71,12 +63,11 @@ StabilityResult run_stability(const StabilityOptions& options) {
       cell.message = r.message;
       cell.frame = r.frame;
       result.total_wall_s += r.wall_s;
-      if (options.progress)
-        options.progress(
-            std::string(m.name) + " on " + cell.scene + ": " + verdict_name(r.verdict) +
-            (r.verdict == Verdict::Ok ? "" : " at step " + std::to_string(r.fail_step)) + " (" +
-            std::to_string(r.steps) + " steps of " + fmt(scene.h) + " s, " + fmt(r.wall_s) + " s)" +
-            (r.message.empty() ? "" : ": " + r.message));
+      options.report(std::string(m.name) + " on " + cell.scene + ": " + verdict_name(r.verdict) +
+                     (r.verdict == Verdict::Ok ? "" : " at step " + std::to_string(r.fail_step)) +
+                     " (" + std::to_string(r.steps) + " steps of " + format_number(scene.h) +
+                     " s, " + format_number(r.wall_s) + " s)" +
+                     (r.message.empty() ? "" : ": " + r.message));
       result.cells.push_back(std::move(cell));
     }
   }
@@ -89,7 +80,7 @@ std::string stability_csv(const StabilityResult& r) {
   for (const StabilityCell& c : r.cells)
     o << c.method << "," << c.scene << "," << verdict_name(c.verdict) << ","
       << (c.verdict == Verdict::Ok ? std::string() : std::to_string(c.fail_step)) << ","
-      << fmt(c.wall_s, "%.6g") << "\n";
+      << format_number(c.wall_s, "%.6g") << "\n";
   return o.str();
 }
 
@@ -135,7 +126,9 @@ std::string stability_markdown(const StabilityResult& r) {
     o << "| " << r.methods[m] << " |";
     for (size_t k = 0; k < r.scenes.size(); ++k) {
       const StabilityCell& c = r.at(m, k);
-      o << " " << (c.verdict == Verdict::NotApplicable ? std::string("–") : fmt(c.wall_s, "%.3f"))
+      o << " "
+        << (c.verdict == Verdict::NotApplicable ? std::string("–")
+                                                : format_number(c.wall_s, "%.3f"))
         << " |";
     }
     o << "\n";

@@ -5,11 +5,11 @@
 // other method runs at the scene's own h.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "app/study/run.h"
+#include "app/study/sweep_options.h"
 
 namespace invfree {
 
@@ -37,14 +37,8 @@ struct StabilityResult {
   }
 };
 
-struct StabilityOptions {
-  bool quick =
-      false;  // quick: the first 2 s of each scene only (the full ceiling travel otherwise)
-  std::function<void(const std::string&)> progress;
-  std::function<bool()> stop;  // checked between runs (Ctrl-C); may be empty
-};
-
-StabilityResult run_stability(const StabilityOptions& options);
+// quick: the first 2 s of each scene only (the full ceiling travel otherwise).
+StabilityResult run_stability(const SweepOptions& options);
 
 std::string stability_csv(const StabilityResult& r);
 std::string stability_markdown(const StabilityResult& r);

@@ -1,8 +1,8 @@
-// The stress scenes of `invfree stability`. Their single source is the TOML files
-// assets/scenes/stress-*.toml; the build embeds the text of every one of them
-// (app/study/CMakeLists.txt), so the command needs no asset path at run time, and
+// The stress scenes of `invfree stability`, with their column headings. Their single
+// source is the TOML files assets/scenes/stress-*.toml, embedded by invfree_scene_io
+// (scene_io/builtin_scenes.h), so the command needs no asset path at run time, and
 // `invfree simulate --scene assets/scenes/stress-h0.1.toml` runs the very same scene.
-// They are file-only scenes, not built-ins (core/scene.cpp's table is unchanged).
+// They are run by path, not offered as built-in scene names.
 #pragma once
 
 #include <optional>

@@ -10,19 +10,13 @@
 // convergence slope; charts are drawn by study_chart.h.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
+#include "app/study/sweep_options.h"
 #include "scene/scene.h"
 
 namespace invfree {
-
-struct StudyOptions {
-  bool quick = false;
-  std::function<void(const std::string&)> progress;  // one line per run, may be empty
-  std::function<bool()> stop;                        // checked between runs (Ctrl-C); may be empty
-};
 
 struct StudyRow {
   std::string method;
@@ -49,7 +43,7 @@ struct StudyResult {
   // The classic check: the lecture's method on the same scene with contact switched off
   // (rows "lecture-no-contact"), where the motion is smooth and implicit Euler's first
   // order shows at every h swept; with stiff contact it only shows for h far below the
-  // contact time scale (see the README).
+  // contact time scale (the notes of study.png say why).
   double smooth_slope = 0.0;
   double lecture_slope_small_h = 0.0;  // the fit over the four smallest h of the scene itself
   double total_wall_s = 0.0;
@@ -57,7 +51,8 @@ struct StudyResult {
 };
 
 // Errors in the scene (e.g. a method cannot be applied) are reported in rows; never throws.
-StudyResult run_study(const SceneDef& scene, const StudyOptions& options);
+// quick: fewer h, tolerances and meshes, and a coarser reference (h / 100).
+StudyResult run_study(const SceneDef& scene, const SweepOptions& options);
 
 std::string study_csv(const StudyResult& result);
 

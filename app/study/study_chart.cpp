@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <numeric>
 #include <tuple>
 
+#include "app/format_number.h"
 #include "app/plot/raster.h"
 #include "app/study/methods.h"
 
@@ -14,15 +14,9 @@ namespace invfree {
 
 namespace {
 
-std::string fmt(double v, const char* f = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 std::string join_times(const std::vector<double>& t) {
   std::string s;
-  for (size_t i = 0; i < t.size(); ++i) s += (i ? ", " : "") + fmt(t[i], "%.4g");
+  for (size_t i = 0; i < t.size(); ++i) s += (i ? ", " : "") + format_number(t[i], "%.4g");
   return s;
 }
 
@@ -34,9 +28,37 @@ void add_failure_notes(const StudyResult& r, bool (*in_sweep)(const StudyResult&
     if (!in_sweep(r, row) || row.failure == "ok") continue;
     std::string& s = by_method[row.method];
     const double v = std::string(key) == "h" ? row.h : row.tol;
-    s += (s.empty() ? "" : ", ") + std::string(key) + " = " + fmt(v, "%.4g") + " " + row.failure;
+    s += (s.empty() ? "" : ", ") + std::string(key) + " = " + format_number(v, "%.4g") + " " +
+         row.failure;
   }
   for (const auto& [method, s] : by_method) notes.push_back(method + " failed: " + s);
+}
+
+// The rows of `method` in a sweep that have an error to plot (failed runs have none;
+// they are listed in the notes).
+std::vector<const StudyRow*> plotted_rows(const StudyResult& r, const std::string& method,
+                                          bool (*in_sweep)(const StudyResult&, const StudyRow&)) {
+  std::vector<const StudyRow*> rows;
+  for (const StudyRow& row : r.rows)
+    if (row.method == method && in_sweep(r, row) && std::isfinite(row.error) && row.error > 0.0)
+      rows.push_back(&row);
+  return rows;
+}
+
+// One series per study method (its label and colour): error against row.*x over the h sweep.
+std::vector<Series> h_sweep_series(const StudyResult& r, double StudyRow::*x) {
+  std::vector<Series> series;
+  for (const Method& m : study_methods()) {
+    Series s;
+    s.label = m.label;
+    s.color = method_color(m.name);
+    for (const StudyRow* row : plotted_rows(r, m.name, in_h_sweep)) {
+      s.x.push_back(row->*x);
+      s.y.push_back(row->error);
+    }
+    series.push_back(s);
+  }
+  return series;
 }
 
 }  // namespace
@@ -87,29 +109,22 @@ Image stack_vertical(const std::vector<Image>& panels) {
   return out;
 }
 
-Image study_chart(const StudyResult& r) {
+namespace {
+
+// Error against wall time over the h sweep, with the Pareto front.
+ChartSpec speed_accuracy_panel(const StudyResult& r) {
   const std::string scene = r.scene.name;
-  // (A) error against wall time.
   ChartSpec a;
   a.title = "Speed against accuracy: " + scene + " (" + std::to_string(r.scene.n_seg) + "x" +
             std::to_string(r.scene.n_seg) + " mesh), each point one time step h";
   a.x_label = "wall-clock time per simulated second (s/s)";
   a.y_label = "RMS node-position error / side length";
   a.log_x = a.log_y = true;
+  a.series = h_sweep_series(r, &StudyRow::wall_s);
   std::vector<double> all_x, all_y;
-  for (const Method& m : study_methods()) {
-    Series s;
-    s.label = m.label;
-    s.color = method_color(m.name);
-    for (const StudyRow& row : r.rows)
-      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) &&
-          row.error > 0.0) {
-        s.x.push_back(row.wall_s);
-        s.y.push_back(row.error);
-      }
+  for (const Series& s : a.series) {
     all_x.insert(all_x.end(), s.x.begin(), s.x.end());
     all_y.insert(all_y.end(), s.y.begin(), s.y.end());
-    a.series.push_back(s);
   }
   Series front;
   front.label = "Pareto front (nothing is both faster and more accurate)";
@@ -128,35 +143,29 @@ Image study_chart(const StudyResult& r) {
     lo = std::min(lo, row.h);
     hi = std::max(hi, row.h);
   }
-  a.notes.push_back("Error at t = " + join_times(r.sample_times) +
-                    " s against a reference of the same model at h = " + fmt(r.reference_h) +
-                    " s, tol = " + fmt(r.reference_tol) +
-                    " m/s. Implicit methods: h = " + fmt(h_hi) + " ... " + fmt(h_lo) +
-                    " s; symplectic Euler: h = " + fmt(e_hi) + " ... " + fmt(e_lo) + " s.");
+  a.notes.push_back(
+      "Error at t = " + join_times(r.sample_times) +
+      " s against a reference of the same model at h = " + format_number(r.reference_h) +
+      " s, tol = " + format_number(r.reference_tol) +
+      " m/s. Implicit methods: h = " + format_number(h_hi) + " ... " + format_number(h_lo) +
+      " s; symplectic Euler: h = " + format_number(e_hi) + " ... " + format_number(e_lo) + " s.");
   add_failure_notes(r, in_h_sweep, "h", a.notes);
   for (const std::string& f : r.reference_failures) a.notes.push_back(f);
+  return a;
+}
 
-  // (B) error against h.
+// Error against h: every method on the scene, the classic check without contact, and a
+// first-order guide.
+ChartSpec convergence_panel(const StudyResult& r) {
   ChartSpec b;
   b.title = "Convergence: implicit Euler without contact, fitted slope " +
-            fmt(r.smooth_slope, "%.2f") + " (first order = 1); with contact " +
-            fmt(r.lecture_slope, "%.2f");
+            format_number(r.smooth_slope, "%.2f") + " (first order = 1); with contact " +
+            format_number(r.lecture_slope, "%.2f");
   b.x_label = "time step h (s)";
   b.y_label = "RMS node-position error / side length";
   b.log_x = b.log_y = true;
   double h_min = INFINITY, h_max = 0.0, e_at_min = NAN;
-  for (const Method& m : study_methods()) {
-    Series s;
-    s.label = m.label;
-    s.color = method_color(m.name);
-    for (const StudyRow& row : r.rows)
-      if (row.method == m.name && in_h_sweep(r, row) && std::isfinite(row.error) &&
-          row.error > 0.0) {
-        s.x.push_back(row.h);
-        s.y.push_back(row.error);
-      }
-    b.series.push_back(s);
-  }
+  b.series = h_sweep_series(r, &StudyRow::h);
   {
     Series s;
     s.label = "classic check: lecture's method, same scene without ground and ceiling";
@@ -187,9 +196,10 @@ Image study_chart(const StudyResult& r) {
   }
   b.notes.push_back(
       "Fitted slopes of log(error) against log(h), lecture's method over all its h: " +
-      fmt(r.smooth_slope, "%.3f") + " without contact (each against its own reference), " +
-      fmt(r.lecture_slope, "%.3f") + " on the scene itself (" +
-      fmt(r.lecture_slope_small_h, "%.2f") + " over its four smallest h).");
+      format_number(r.smooth_slope, "%.3f") +
+      " without contact (each against its own reference), " +
+      format_number(r.lecture_slope, "%.3f") + " on the scene itself (" +
+      format_number(r.lecture_slope_small_h, "%.2f") + " over its four smallest h).");
   b.notes.push_back(
       "With contact, the barrier's stiff response at impact (a time scale of about a millisecond) "
       "and the numerical damping of the vibrations it starts dominate the error at these h; "
@@ -197,12 +207,14 @@ Image study_chart(const StudyResult& r) {
   b.notes.push_back(
       "The neo-Hookean implicit variants share one minimiser per step, so their errors coincide; "
       "they differ in cost and in where they fail.");
-  return stack_vertical({render_chart(a), render_chart(b)});
+  return b;
 }
 
-Image sweeps_chart(const StudyResult& r) {
+// Error against wall time over the Newton tolerance sweep of every implicit method.
+ChartSpec tolerance_panel(const StudyResult& r) {
   ChartSpec c;
-  c.title = "Newton tolerance sweep at h = " + fmt(r.scene.h) + " s (" + r.scene.name + ")";
+  c.title =
+      "Newton tolerance sweep at h = " + format_number(r.scene.h) + " s (" + r.scene.name + ")";
   c.x_label = "wall-clock time per simulated second (s/s)";
   c.y_label = "RMS node-position error / side length";
   c.log_x = c.log_y = true;
@@ -214,10 +226,9 @@ Image sweeps_chart(const StudyResult& r) {
     s.label = m.implicit() ? m.label : "";
     s.color = method_color(m.name);
     std::vector<std::tuple<double, double, double>> pts;  // tol, wall, error
-    for (const StudyRow& row : r.rows)
-      if (m.implicit() && row.method == m.name && in_tol_sweep(r, row) &&
-          std::isfinite(row.error) && row.error > 0.0)
-        pts.emplace_back(row.tol, row.wall_s, row.error);
+    if (m.implicit())
+      for (const StudyRow* row : plotted_rows(r, m.name, in_tol_sweep))
+        pts.emplace_back(row->tol, row->wall_s, row->error);
     std::sort(pts.begin(), pts.end());
     for (const auto& [tol, wall, err] : pts) {
       s.x.push_back(wall);
@@ -241,17 +252,22 @@ Image sweeps_chart(const StudyResult& r) {
         if (row.wall_s > w_hi) w_hi = row.wall_s, t_hi = row.tol;
       }
     if (std::isfinite(e_lo))
-      c.notes.push_back("Lecture's method: error " + fmt(e_lo) + " ... " + fmt(e_hi) +
-                        " over the tolerances that ran; " + "wall time " + fmt(w_lo) +
-                        " s/s (tol = " + fmt(t_lo) + ") ... " + fmt(w_hi) +
-                        " s/s (tol = " + fmt(t_hi) + ").");
+      c.notes.push_back("Lecture's method: error " + format_number(e_lo) + " ... " +
+                        format_number(e_hi) + " over the tolerances that ran; " + "wall time " +
+                        format_number(w_lo) + " s/s (tol = " + format_number(t_lo) + ") ... " +
+                        format_number(w_hi) + " s/s (tol = " + format_number(t_hi) + ").");
   }
   add_failure_notes(r, in_tol_sweep, "tol", c.notes);
+  return c;
+}
 
+// Error against wall time over the mesh resolutions, against the finer mesh.
+ChartSpec mesh_panel(const StudyResult& r) {
   ChartSpec d;
-  d.title = "Mesh resolution, lecture's method at h = " + fmt(r.scene.h) + " s, against a " +
-            std::to_string(r.mesh_reference_n_seg) + "x" + std::to_string(r.mesh_reference_n_seg) +
-            " mesh at h = " + fmt(r.mesh_reference_h) + " s";
+  d.title = "Mesh resolution, lecture's method at h = " + format_number(r.scene.h) +
+            " s, against a " + std::to_string(r.mesh_reference_n_seg) + "x" +
+            std::to_string(r.mesh_reference_n_seg) +
+            " mesh at h = " + format_number(r.mesh_reference_h) + " s";
   d.x_label = "wall-clock time per simulated second (s/s)";
   d.y_label = "RMS error at the coarse nodes / side length";
   d.log_x = d.log_y = true;
@@ -264,14 +280,26 @@ Image sweeps_chart(const StudyResult& r) {
         s.x.push_back(row.wall_s);
         s.y.push_back(row.error);
       }
-      d.notes.push_back("n_seg = " + std::to_string(row.n_seg) + ": " + row.failure +
-                        (std::isfinite(row.error) ? ", error " + fmt(row.error) : std::string()) +
-                        ", " + fmt(row.wall_s) + " s/s");
+      d.notes.push_back(
+          "n_seg = " + std::to_string(row.n_seg) + ": " + row.failure +
+          (std::isfinite(row.error) ? ", error " + format_number(row.error) : std::string()) +
+          ", " + format_number(row.wall_s) + " s/s");
     }
   d.series.push_back(s);
   d.notes.push_back("Coarse nodes are compared with the same material points of the fine mesh.");
   for (const std::string& f : r.reference_failures) d.notes.push_back(f);
-  return stack_vertical({render_chart(c), render_chart(d)});
+  return d;
+}
+
+}  // namespace
+
+Image study_chart(const StudyResult& r) {
+  return stack_vertical(
+      {render_chart(speed_accuracy_panel(r)), render_chart(convergence_panel(r))});
+}
+
+Image sweeps_chart(const StudyResult& r) {
+  return stack_vertical({render_chart(tolerance_panel(r)), render_chart(mesh_panel(r))});
 }
 
 }  // namespace invfree

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "potential/contact.h"
+#include "potential/plane_barrier.h"
 
 namespace invfree {
 

@@ -1,4 +1,4 @@
-// How a run ended (issue 5's stability classes) and the checks that decide it.
+// How a run ended (the stability table's classes) and the checks that decide it.
 //   ok, inverted (det F <= 0), penetrated (a node on or through a plane), non-finite,
 //   newton-failed (iteration cap, no descent, or a broken-down linear solve),
 //   blew-up (energy growth the scene cannot supply, or nodes far outside any place the

@@ -1,6 +1,8 @@
 #include "linalg/linear_solver.h"
 
+#ifndef INVFREE_NO_CHOLMOD  // defined by the web build (app/web/CMakeLists.txt)
 #include <cholmod.h>
+#endif
 #include <dlfcn.h>
 
 #include <Eigen/OrderingMethods>
@@ -27,6 +29,7 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
+#ifndef INVFREE_NO_CHOLMOD
 // ---- CHOLMOD's memory: a size-keyed recycling pool per factorisation -------------------
 // CHOLMOD allocates its numeric workspace on every factorisation and frees it on return.
 // The sizes depend on the symbolic analysis only, so after the first factorisation every
@@ -147,8 +150,9 @@ cholmod_sparse cholmod_view(const SpMat& a) {
   s.packed = 1;
   return s;
 }
+#endif  // INVFREE_NO_CHOLMOD
 
-// ---- LDL^T (core/sparse_ldlt.h) on a fill-reducing ordering ------------------------------
+// ---- LDL^T (core/linalg/sparse_ldlt.h) on a fill-reducing ordering -----------------------
 struct LdltBackend {
   SparseLdlt ldlt;
   double factor_flops = 0.0, solve_flops = 0.0;
@@ -174,6 +178,11 @@ struct LdltBackend {
     return new_to_old;
   }
 
+#ifdef INVFREE_NO_CHOLMOD
+  static bool metis_order(const SpMat&, std::vector<int>&) {
+    return false;
+  }
+#else
   static bool metis_order(const SpMat& a, std::vector<int>& new_to_old) {
     cholmod_common c;
     cholmod_start(&c);
@@ -192,14 +201,18 @@ struct LdltBackend {
     cholmod_finish(&c);
     return ok;
   }
+#endif
 
   bool factorize(const SpMat& a, bool positive_definite) {
     return ldlt.factorize(a, positive_definite);
   }
   // The float copy, when kept (keep_float_copy), only ever serves PCG.
-  void solve(const VecX& b, VecX& x) { ldlt.solve_float(b, x); }
+  void solve(const VecX& b, VecX& x) {
+    ldlt.solve_float(b, x);
+  }
 };
 
+#ifndef INVFREE_NO_CHOLMOD
 // ---- BLAS threads ------------------------------------------------------------------------
 // CHOLMOD's BLAS calls run on one thread. OpenBLAS splits its level-3 calls and its
 // parallel dense Cholesky by the number of BLAS threads, so with more than one the
@@ -298,6 +311,16 @@ struct CholmodBackend {
     return true;
   }
 };
+#else
+// Built without CHOLMOD (the web build, docs/web.md: SuiteSparse is not compiled to
+// WebAssembly): the LDL^T backend serves every request, and orderings are AMD's.
+struct CholmodBackend {
+  double factor_flops = 0.0, solve_flops = 0.0;
+  bool analyze(const SpMat&) { return false; }
+  bool factorize(const SpMat&) { return false; }
+  bool solve(const VecX&, VecX&) { return false; }
+};
+#endif  // INVFREE_NO_CHOLMOD
 
 // y = H v (H in full symmetric storage, so column i is row i) and v.y, in fixed blocks.
 double multiply(const SpMat& h, const VecX& v, VecX& y) {
@@ -376,26 +399,23 @@ struct LinearSolver::Impl {
   // factors from one iteration to the next (friction's whenever a node starts or stops
   // sliding), the elasticity only slowly. Those unknowns C (diagonal moved by more than
   // kChangedDiagonal) and their neighbours in H's graph, the set D, get an exact block
-  // solve S = H_DD^-1 (core/submatrix_ldlt.h) around B, the symmetric multiplicative
-  // (Schwarz) combination
+  // solve S = H_DD^-1 (core/linalg/submatrix_ldlt.h) around B, the symmetric
+  // multiplicative (Schwarz) combination
   //   z = S r;  z += B (r - H z);  z += S (r - H z)
   // i.e. M^-1 = (I - S H) B (I - H S) + S (2 S^-1 - H) S, symmetric positive definite
-  // because 2 S^-1 - H_DD = H_DD is. Where B treated a node as held by friction that now
-  // slides (or the reverse), the block carries the change to the neighbours the node
-  // pulls on; a diagonal smoother on C alone cannot. Measured on `compress`, CG
-  // iterations per step at n_seg 32 / 64 / 128 / 256 (`invfree bench`): 5.7 / 8.7 / 14.5 /
-  // 28.6 with the Jacobi smoother on C, 5.1 / 7.5 / 10.1 / 19.2 with this block (and
-  // 12.5 at n_seg 128 with the block on C alone, without the neighbours); at n_seg 256 the
-  // median step went from 244-252 to 204-234 ms and the mean from 363-400 to 287-302 ms.
+  // because 2 S^-1 - H_DD = H_DD is. D holds C's neighbours because where B treated a node
+  // as held by friction that now slides (or the reverse), the block must carry the change
+  // to the neighbours the node pulls on, which a diagonal smoother on C alone cannot.
+  // `compress`, CG iterations per step at n_seg 32 / 64 / 128 / 256: 5.05 / 7.46 / 10.10 /
+  // 19.19 (`build/release/app/invfree bench --sizes 32,64,128,256`).
   // A set D larger than the block's buffers (n / 8 unknowns, 32 envelope entries per
   // unknown) means the factor is too stale to be worth correcting: that solve falls back to
   // a Jacobi smoother S = W D_C^-1 on C and the next one refactorises. Its weights
   // w_i = min(1, 1.9 / (1 + R_i)), R_i the Gershgorin radius of row i of
   // D^-1/2 H_CC D^-1/2, make 2 S^-1 - H_CC diagonally dominant, so again positive definite.
   // The threshold: during compression the elasticity moves a fifth of the diagonal by
-  // 10-30% within a few steps, which the factor absorbs (CG iterations per step at n_seg
-  // 64 / 128 / 256 with the Jacobi smoother: 9.6 / 15.1 / 35.1 at 10%, 9.8 / 15.0 / 37.3
-  // at 30%; at n_seg 256 the median |C| is 27,600 unknowns at 10% and 87 at 30%).
+  // 10-30% within a few steps, which the factor absorbs; at 30% C is the contact rows
+  // (about a hundred unknowns at n_seg 256), at 10% it would be tens of thousands.
   static constexpr double kChangedDiagonal = 0.3;
   void prepare_correction(const SpMat& h) {
     const int n = static_cast<int>(diag_pos.size());

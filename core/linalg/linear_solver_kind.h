@@ -2,7 +2,8 @@
 //   auto    - the default: PCG preconditioned by a reused sparse LDL^T factorisation
 //             when the Hessian is positive definite by construction (projection "diagonal"
 //             or "full"), a fresh direct LDL^T per iteration otherwise (projection "none")
-//   ldlt    - Eigen's simplicial LDL^T, refactorised every Newton iteration
+//   ldlt    - the project's sparse LDL^T (core/linalg/sparse_ldlt.h), refactorised every
+//             Newton iteration
 //   cholmod - CHOLMOD's supernodal LL^T (METIS ordering), refactorised every iteration
 //   pcg     - PCG with a reused factorisation as preconditioner, even where auto would not
 #pragma once

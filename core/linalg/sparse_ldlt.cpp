@@ -460,10 +460,9 @@ void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
   }
   // Backward: D L^T x = y, the top first, then the subtrees per bin.
   // Column by column, each a dot product in column_dot's fixed order. (Summing a
-  // supernode block's dot products in one pass, as the forward solve's updates are,
-  // measured ~15% faster at n_seg 128 but changes the rounding, and n_seg 256's fold
-  // steps are sensitive enough to that to reach Newton's iteration cap: see the README's
-  // performance notes.)
+  // supernode block's dot products in one pass, as the forward solve's updates are, would
+  // be faster but changes the rounding, and n_seg 256's fold steps are sensitive to
+  // rounding: see docs/performance.md, "The fold steps at n_seg 256".)
   for (auto it = top_.rbegin(); it != top_.rend(); ++it) {
     const int t = *it;
     y[t] = y[t] / d[t] - column_dot(lp[t + 1] - lp[t], sr + sb[t], lx + lp[t], y);

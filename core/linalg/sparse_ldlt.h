@@ -14,14 +14,14 @@
 // alone, so the result is bit-identical for any number of threads.
 //
 // A 2D mesh ordered by nested dissection (or AMD) has a tree whose top separator is a
-// few dozen nodes: on the 2-core machines the solves PCG repeats run ~1.8x faster.
+// few dozen nodes: on the 2-core machines the solves PCG repeats run ~1.8x faster than on
+// one thread (`INVFREE_THREADS=1` against 2, `invfree_bench --benchmark_filter=LdltSolve`).
 //
-// The solves, which PCG repeats many times per factorisation, read one list of row
-// indices per fundamental supernode instead of one per column, and the forward solve
-// works on blocks of up to four of a supernode's columns, reading and writing each row
-// below a block once (the values and the order of every operation are unchanged, so are
-// the bits): n_seg 128, ~1.7 -> 1.2 ms a solve pair with the shared lists, and ~1.1 ->
-// ~0.85 ms with the blocks (n_seg 256: inside the machine's noise).
+// The solves, which PCG repeats many times per factorisation and which are bound by
+// memory traffic, read one list of row indices per fundamental supernode instead of one
+// per column, and the forward solve works on blocks of up to four of a supernode's
+// columns, reading and writing each row below a block once. The values and the order of
+// every operation are those of a column-by-column solve, so are the bits.
 //
 // Inputs: the full symmetric pattern (CSC, both triangles, sorted) and a fill-reducing
 // ordering; then values on that same pattern. No allocation after `analyze`.

@@ -1,22 +1,31 @@
 // The incremental potential of one implicit Euler step (lecture 9's demo, IPC's form):
-//   E(x, c) = 1/2 |x - x_tilde|^2_M
-//           + h^2 [ sum_t area_t Psi(F_t) - sum_i m_i g.x_i
-//                   + sum_i b(y_i - y_ground) + sum_i b(c - y_i) + sum_i D_i(x_i) ]
-//           + 1/2 k (c - c_target)^2
-// over the node coordinates x (2N) and, when the scene has a ceiling, its height c as
-// one extra unknown pulled to its prescribed position by a penalty (the demo's moving
-// Dirichlet boundary; Newton stiffens k until |c - c_target| / h < tol and then holds c
-// fixed). Each term is evaluated only when the scene switches it on.
+//   E(x, c) = 1/2 |x - x_tilde|^2_M                                 inertia.h
+//           + h^2 [ sum_t area_t Psi(F_t)                           elasticity.h
+//                   - sum_i m_i g.x_i                               gravity.h
+//                   + sum_i b(y_i - y_ground) + sum_i b(c - y_i)    plane_barrier.h
+//                   + sum_i D_i(x_i)                                friction.h
+//                   + k_pull/2 |x_p - target|^2 ]                   pull_spring.h
+//           + 1/2 k (c - c_target)^2                                ceiling_penalty.h
+// over the node coordinates x (2N) and, when the scene has a ceiling, its height c as one
+// extra unknown. Each term is one file of free functions and is evaluated only when the
+// scene switches it on; the terms are listed once, in for_each_node_term below and in the
+// sums of incremental_potential.cpp.
 // Inputs: a StepProblem (everything frozen for the step) and z = [x; c].
 // Outputs: the value (+infinity outside the feasible set: an inverted neo-Hookean
-// triangle or a node on or through a plane), or the gradient and projected Hessian.
+// triangle or a node on or through a plane), the gradient and projected Hessian, and the
+// largest feasible step along a direction (the terms' filters).
 #pragma once
 
 #include <vector>
 
 #include "linalg/sparse_hessian.h"
-#include "material/material.h"
-#include "potential/contact.h"
+#include "potential/ceiling_penalty.h"
+#include "potential/elasticity.h"
+#include "potential/friction.h"
+#include "potential/gravity.h"
+#include "potential/inertia.h"
+#include "potential/plane_barrier.h"
+#include "potential/pull_spring.h"
 #include "scene/mesh.h"
 
 namespace invfree {
@@ -24,47 +33,40 @@ namespace invfree {
 struct StepProblem {
   const Mesh* mesh = nullptr;
   const std::vector<double>* mass = nullptr;  // per node
-  Model model = Model::NeoHookean;
-  Lame lame;
-  HessianProjection projection = HessianProjection::Diagonal;
   double h = 0.01;
-  VecX x_tilde;  // x^n + h v^n (2N)
-  VecX x_start;  // x^n (2N), for friction
+  VecX x_tilde;  // x^n + h v^n (2N): inertia's target
+  VecX x_start;  // x^n (2N): lagged friction's reference
 
-  bool gravity_on = false;
-  Vec2 gravity = Vec2::Zero();
-
-  BarrierParams barrier;
-  bool ground_on = false;
-  double ground_y = 0.0;
-  bool friction_on = false;
-  std::vector<double> friction_weight;  // mu_f lambda_i per node, lagged
-  double friction_eps_u = 0.0;          // eps_v h
-
-  bool ceiling_on = false;
-  double ceiling_target = 0.0;
-  double ceiling_stiffness = 0.0;  // k, already multiplied by the ceiling's mass
-  bool ceiling_fixed = false;
-
-  // Optional grab spring (the live window's mouse): + h^2 k/2 |x_node - target|^2, one
-  // node pulled toward a target while the user drags it. Off in every scene.
-  bool pull_on = false;
-  int pull_node = 0;
-  Vec2 pull_target = Vec2::Zero();
-  double pull_stiffness = 0.0;  // k, N/m
+  Elasticity elasticity;
+  Gravity gravity;
+  GroundBarrier ground;
+  GroundFriction friction;
+  CeilingBarrier ceiling;  // on: the ceiling's height is the unknown z[2N]
+  CeilingPenalty ceiling_penalty;
+  PullSpring pull;
 
   int node_count() const { return mesh->node_count(); }
-  int dof_count() const { return 2 * node_count() + (ceiling_on ? 1 : 0); }
+  int dof_count() const { return 2 * node_count() + (ceiling.on ? 1 : 0); }
+  NodeState node_state(const double* z, int i) const {
+    return {i,          z[2 * i],       z[2 * i + 1],
+            (*mass)[i], x_start[2 * i], ceiling.on ? z[2 * node_count()] : 0.0};
+  }
 };
+
+// The per-node terms scaled by h^2, in the order they are summed.
+template <class Fn>
+void for_each_node_term(const StepProblem& p, Fn&& fn) {
+  fn(p.gravity);
+  fn(p.ground);
+  fn(p.friction);
+  fn(p.ceiling);
+}
 
 double ip_energy(const StepProblem& p, const VecX& z);
 void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient,
                          SparseHessian& hessian);
-
-// Elastic energy sum_t area_t Psi(F_t) alone (also used by explicit integration and tests).
-double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x);
-// Adds scale * the elastic gradient to `gradient` (2N entries).
-void add_elastic_gradient(const Mesh& mesh, Model model, const Lame& lame, const VecX& x,
-                          double scale, VecX& gradient);
+// The largest alpha in (0, 1] that every filter allows along direction dir: the planes'
+// (plane_barrier.h) and, when the model needs det F > 0, the inversion filter's.
+double largest_feasible_step(const StepProblem& p, const VecX& z, const VecX& dir);
 
 }  // namespace invfree

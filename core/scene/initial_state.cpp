@@ -31,27 +31,48 @@ VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
   return x;
 }
 
-std::string check_initial_state(const SceneDef& s) {
+std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
   const Mesh mesh = square_mesh(s.side, s.n_seg);
   const VecX x = initial_positions(s, mesh);
-  if (!model_allows_inversion(s.model)) {
-    for (const auto& tri : mesh.triangles) {
-      Mat2 ds;
-      ds.col(0) = x.segment<2>(2 * tri[1]) - x.segment<2>(2 * tri[0]);
-      ds.col(1) = x.segment<2>(2 * tri[2]) - x.segment<2>(2 * tri[0]);
-      if (!(ds.determinant() > 0.0))
-        return "mesh.jitter: the initial mesh has an inverted triangle, which the " +
-               std::string(model_name(s.model)) + " model cannot start from";
-    }
+  const bool needs_det_f_positive = !model_allows_inversion(s.model);
+  for (const auto& tri : mesh.triangles) {
+    // The rest triangle's area must be a normal double: the rest shape's inverse and the
+    // node masses divide by it or scale with it.
+    Mat2 dm;
+    dm.col(0) = mesh.rest[tri[1]] - mesh.rest[tri[0]];
+    dm.col(1) = mesh.rest[tri[2]] - mesh.rest[tri[0]];
+    if (const double det = dm.determinant(); !std::isnormal(det))
+      return SceneProblem{"mesh.side",
+                          std::string("side / n_seg gives triangles whose area ") +
+                              (std::isfinite(det) ? "underflows" : "overflows") +
+                              " in double precision",
+                          {"mesh.n_seg"}};
+    if (!needs_det_f_positive) continue;
+    Mat2 ds;
+    ds.col(0) = x.segment<2>(2 * tri[1]) - x.segment<2>(2 * tri[0]);
+    ds.col(1) = x.segment<2>(2 * tri[2]) - x.segment<2>(2 * tri[0]);
+    if (!(ds.determinant() > 0.0))
+      return SceneProblem{"mesh.jitter",
+                          "the initial mesh has an inverted triangle, which the " +
+                              std::string(model_name(s.model)) + " model cannot start from",
+                          {"mesh.seed", "material.model", "mesh.side", "mesh.n_seg"}};
   }
+  const std::vector<std::string> placement = {"mesh.side", "mesh.jitter", "mesh.seed",
+                                              "mesh.n_seg"};
   for (int i = 0; i < mesh.node_count(); ++i) {
     const double y = x[2 * i + 1];
-    if (s.has_ground && !(y > s.ground_y))
-      return "ground.y: the square starts on or through the ground";
-    if (s.has_ceiling && !(y < s.ceiling_y))
-      return "ceiling.y: the square starts on or through the ceiling";
+    if (s.has_ground && !(y > s.ground_y)) {
+      auto causes = placement;
+      causes.push_back("ground.enabled");
+      return SceneProblem{"ground.y", "the square starts on or through the ground", causes};
+    }
+    if (s.has_ceiling && !(y < s.ceiling_y)) {
+      auto causes = placement;
+      causes.push_back("ceiling.enabled");
+      return SceneProblem{"ceiling.y", "the square starts on or through the ceiling", causes};
+    }
   }
-  return "";
+  return std::nullopt;
 }
 
 double estimated_memory_bytes(int n_seg) {

@@ -1,11 +1,13 @@
 // The state a scene starts from: the square mesh's rest positions, optionally jittered
 // by a deterministic pseudo-random displacement (SplitMix64, identical on every platform),
 // and the initial velocity. `check_initial_state` rejects a start that the solver could
-// not step from: an inverted triangle under a model that needs det F > 0, or a node on or
-// through the ground or the ceiling. `check_mesh_fits_in_memory` refuses an n_seg whose
-// simulation would need more than 80% of this machine's physical memory.
+// not step from: a rest triangle whose area is not a normal double, an inverted triangle
+// under a model that needs det F > 0, or a node on or through the ground or the ceiling.
+// `check_mesh_fits_in_memory` refuses an n_seg whose simulation would need more than 80%
+// of this machine's physical memory.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
@@ -13,7 +15,7 @@
 namespace invfree {
 
 VecX initial_positions(const SceneDef& scene, const Mesh& mesh);
-std::string check_initial_state(const SceneDef& scene);
+std::optional<SceneProblem> check_initial_state(const SceneDef& scene);
 
 // Bytes a simulation of an n_seg mesh needs, an upper estimate: the measured peak of
 // `invfree simulate` is about 2.8 kB per node at n_seg 128 and 256 (mostly the sparse

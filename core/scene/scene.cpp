@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "scene/initial_state.h"
 
@@ -8,22 +9,47 @@ namespace invfree {
 
 namespace {
 
-SceneDef make_compress() {
-  return SceneDef{};
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr ValueBounds kFinite{};
+constexpr ValueBounds kPositive{0.0, kInf, true, false, false};
+constexpr ValueBounds kNonNegative{0.0, kInf, false, false, false};
+constexpr ValueBounds kBelowHalf{0.0, 0.5, false, true, false};  // [0, 0.5)
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
 }
 
-SceneDef make_drop() {
-  SceneDef s;
-  s.name = "drop";
-  s.has_ceiling = false;
-  s.friction = 0.0;
-  return s;
-}
-
-constexpr SceneEntry kScenes[] = {
-    {"compress", "the reference demo: a soft square drops on the ground and a ceiling squashes it",
-     make_compress},
-    {"drop", "the same square falling on a frictionless ground, no ceiling", make_drop},
+// Every bounded value. Ranges are checked whether or not the term that uses a value is
+// switched on: a bad value stays bad when a later --set switches its term on, and a
+// student learns of it at once.
+constexpr BoundedValue kBounded[] = {
+    {"mesh.side", [](const SceneDef& s) { return s.side; }, kPositive},
+    {"mesh.n_seg",
+     [](const SceneDef& s) { return double(s.n_seg); },
+     {1.0, double(kMaxSegments), false, false, true}},
+    {"mesh.density", [](const SceneDef& s) { return s.density; }, kPositive},
+    {"mesh.jitter", [](const SceneDef& s) { return s.jitter; }, kBelowHalf},
+    {"mesh.seed",
+     [](const SceneDef& s) { return double(s.seed); },
+     {0.0, kInf, false, false, true}},
+    {"material.E", nullptr, kPositive},
+    {"material.nu", nullptr, kBelowHalf},
+    {"material.mu", [](const SceneDef& s) { return s.lame.mu; }, kPositive},
+    {"material.lambda", [](const SceneDef& s) { return s.lame.lambda; }, kNonNegative},
+    {"time.h", [](const SceneDef& s) { return s.h; }, kPositive},
+    {"time.tol", [](const SceneDef& s) { return s.tol; }, kPositive},
+    {"time.max_newton",
+     [](const SceneDef& s) { return double(s.max_newton); },
+     {1.0, 100000.0, false, false, true}},
+    {"ground.y", [](const SceneDef& s) { return s.ground_y; }, kFinite},
+    {"ground.friction", [](const SceneDef& s) { return s.friction; }, kNonNegative},
+    {"ceiling.y", [](const SceneDef& s) { return s.ceiling_y; }, kFinite},
+    {"ceiling.velocity", [](const SceneDef& s) { return s.ceiling_velocity; }, kFinite},
+    {"ceiling.stop", [](const SceneDef& s) { return s.ceiling_stop; }, kFinite},
+    {"barrier.dhat", [](const SceneDef& s) { return s.dhat; }, kPositive},
+    {"barrier.kappa", [](const SceneDef& s) { return s.kappa; }, kPositive},
 };
 
 }  // namespace
@@ -38,51 +64,66 @@ std::optional<Integrator> integrator_from_name(std::string_view name) {
   return std::nullopt;
 }
 
-std::span<const SceneEntry> builtin_scenes() {
-  return kScenes;
+bool ValueBounds::contains(double v) const {
+  return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
 }
 
-std::optional<SceneDef> find_builtin_scene(std::string_view name) {
-  for (const auto& e : kScenes)
-    if (name == e.name) return e.make();
-  return std::nullopt;
+std::string ValueBounds::range() const {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  char buf[64] = "";
+  if (integer && has_lo && has_hi)
+    std::snprintf(buf, sizeof buf, "%g to %g", lo, hi);
+  else if (has_lo && has_hi)
+    std::snprintf(buf, sizeof buf, "%c%g, %g%c", lo_open ? '(' : '[', lo, hi, hi_open ? ')' : ']');
+  else if (has_lo)
+    std::snprintf(buf, sizeof buf, "%s %g", lo_open ? ">" : ">=", lo);
+  else if (has_hi)
+    std::snprintf(buf, sizeof buf, "%s %g", hi_open ? "<" : "<=", hi);
+  return buf;
+}
+
+std::string ValueBounds::requirement() const {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  if (integer && has_lo && has_hi) return "must be between " + number(lo) + " and " + number(hi);
+  if (integer) return "must be " + range();
+  if (has_lo && has_hi) return "must be in " + range();
+  if (has_lo || has_hi) return "must be a finite number " + range();
+  return "must be finite";
+}
+
+std::span<const BoundedValue> scene_value_bounds() {
+  return kBounded;
+}
+
+const ValueBounds* find_value_bounds(std::string_view key) {
+  for (const auto& v : kBounded)
+    if (key == v.key) return &v.bounds;
+  return nullptr;
+}
+
+std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
+  for (const auto& v : kBounded)
+    if (v.get && !v.bounds.contains(v.get(s)))
+      return SceneProblem{v.key, v.bounds.requirement(), {}};
+  if (auto e = check_mesh_fits_in_memory(s.n_seg); !e.empty())
+    return SceneProblem{"mesh.n_seg", e, {}};
+  if (!s.initial_velocity.allFinite())
+    return SceneProblem{"initial.velocity", "must be finite", {}};
+  if (!s.gravity.allFinite()) return SceneProblem{"gravity.g", "must be finite", {}};
+  // Relations between switched-on terms.
+  if (s.has_ceiling && s.has_ground) {
+    const std::vector<std::string> planes = {"ground.y", "ground.enabled", "ceiling.enabled"};
+    if (s.ceiling_y <= s.ground_y)
+      return SceneProblem{"ceiling.y", "must be above ground.y", planes};
+    if (s.ceiling_stop <= s.ground_y)
+      return SceneProblem{"ceiling.stop", "must be above ground.y", planes};
+  }
+  return check_initial_state(s);
 }
 
 std::string validate_scene(const SceneDef& s) {
-  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  // Ranges first, whether or not the term that uses a value is switched on: a bad value
-  // stays bad when a later --set switches its term on, and a student learns of it at once.
-  if (!positive(s.side)) return "mesh.side: must be a finite number > 0";
-  if (s.n_seg < 1) return "mesh.n_seg: must be an integer >= 1";
-  if (s.n_seg > kMaxSegments)
-    return "mesh.n_seg: at most " + std::to_string(kMaxSegments) +
-           " (the mesh would not fit in memory)";
-  if (auto e = check_mesh_fits_in_memory(s.n_seg); !e.empty()) return "mesh.n_seg: " + e;
-  if (!positive(s.density)) return "mesh.density: must be a finite number > 0";
-  if (!(std::isfinite(s.jitter) && s.jitter >= 0.0 && s.jitter < 0.5))
-    return "mesh.jitter: must be in [0, 0.5)";
-  if (!positive(s.lame.mu)) return "material.mu: must be a finite number > 0 (E > 0)";
-  if (!(std::isfinite(s.lame.lambda) && s.lame.lambda >= 0.0))
-    return "material.lambda: must be a finite number >= 0 (nu in [0, 0.5))";
-  if (!positive(s.h)) return "time.h: must be a finite number > 0";
-  if (!positive(s.tol)) return "time.tol: must be a finite number > 0";
-  if (s.max_newton < 1) return "time.max_newton: must be an integer >= 1";
-  if (!s.initial_velocity.allFinite()) return "initial.velocity: must be finite";
-  if (!s.gravity.allFinite()) return "gravity.g: must be finite";
-  if (!std::isfinite(s.ground_y)) return "ground.y: must be finite";
-  if (!(std::isfinite(s.friction) && s.friction >= 0.0))
-    return "ground.friction: must be a finite number >= 0";
-  if (!std::isfinite(s.ceiling_y)) return "ceiling.y: must be finite";
-  if (!std::isfinite(s.ceiling_velocity)) return "ceiling.velocity: must be finite";
-  if (!std::isfinite(s.ceiling_stop)) return "ceiling.stop: must be finite";
-  if (!positive(s.dhat)) return "barrier.dhat: must be a finite number > 0";
-  if (!positive(s.kappa)) return "barrier.kappa: must be a finite number > 0";
-  // Relations between switched-on terms.
-  if (s.has_ceiling && s.has_ground) {
-    if (s.ceiling_y <= s.ground_y) return "ceiling.y: must be above ground.y";
-    if (s.ceiling_stop <= s.ground_y) return "ceiling.stop: must be above ground.y";
-  }
-  return check_initial_state(s);
+  const auto problem = find_scene_problem(s);
+  return problem ? problem->key + ": " + problem->reason : "";
 }
 
 }  // namespace invfree

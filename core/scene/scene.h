@@ -1,13 +1,16 @@
-// A scene: a plain definition struct with defaults (the reference demo, `compress`), and
-// the table of built-in scenes shared by the app, the tests and the benchmarks. A term
-// whose `has_*` flag is false is never evaluated (a missing TOML section switches it off).
+// A scene: a plain definition struct with defaults (the reference demo, `compress`), the
+// range of each of its values, and its validation. A term whose `has_*` flag is false is
+// never evaluated (a missing TOML section switches it off). The built-in scenes are TOML
+// files (assets/scenes/), read by the scene_io library.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "linalg/linear_solver_kind.h"
 #include "material/material.h"
@@ -65,22 +68,46 @@ struct SceneDef {
   bool has_contact() const { return has_ground || has_ceiling; }
 };
 
-struct SceneEntry {
-  const char* name;
-  const char* description;
-  SceneDef (*make)();
-};
-
-std::span<const SceneEntry> builtin_scenes();
-std::optional<SceneDef> find_builtin_scene(std::string_view name);
-
 // The largest n_seg accepted anywhere: keeps every node, DOF and sparse-matrix index well
 // inside int. Smaller meshes can still be refused by check_mesh_fits_in_memory.
 constexpr int kMaxSegments = 4096;
 
-// Checks every value's range and the initial state (no inverted triangle for a model that
-// needs det F > 0, no node on or through a plane). Returns "" when valid, otherwise
-// "key: reason" naming the offending scene key.
+// The range of a scene value: finite, and between lo and hi (each bound open or closed).
+struct ValueBounds {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false, hi_open = false;
+  bool integer = false;
+
+  bool contains(double v) const;
+  std::string requirement() const;  // "must be a finite number > 0", "must be in [0, 0.5)", ...
+  std::string range() const;        // "> 0", "[0, 0.5)", "1 to 4096"; "" when only finite
+};
+
+// A value's bounds under its scene key, "section.key". validate_scene checks every value
+// that has a `get`; the scene file reader checks each value as it reads it (E and nu too,
+// which the scene keeps as mu and lambda) and prints the ranges in docs/scene-keys.md.
+struct BoundedValue {
+  const char* key;
+  double (*get)(const SceneDef&);  // nullptr: an input converted before it reaches SceneDef
+  ValueBounds bounds;
+};
+std::span<const BoundedValue> scene_value_bounds();
+const ValueBounds* find_value_bounds(std::string_view key);  // nullptr when none
+
+// What is wrong with a scene: the key whose value is out of range or whose relation to
+// another fails, why, and the other keys the check read (so that a reader of scene files
+// can blame the key the user actually wrote).
+struct SceneProblem {
+  std::string key;
+  std::string reason;
+  std::vector<std::string> causes;
+};
+
+// Checks every value's range and the initial state (no degenerate or, for a model that
+// needs det F > 0, inverted triangle; no node on or through a plane).
+std::optional<SceneProblem> find_scene_problem(const SceneDef& scene);
+// "" when valid, otherwise "key: reason" naming the offending scene key.
 std::string validate_scene(const SceneDef& scene);
 
 }  // namespace invfree

@@ -1,30 +1,18 @@
-// Scene files (TOML) and `--set section.key=value` overrides, on top of the built-in
-// scene table. Sections and keys:
+// Scene files (TOML) and `--set section.key=value` overrides. The keys, their types, units,
+// ranges and meaning: docs/scene-keys.md (generated from scene_io/key_table.cpp). In short:
 //   name = "..."
-//   [mesh]     side, n_seg, density, mass ("uniform" | "lumped"), jitter, seed
-//   [material] model ("neo-hookean" | "linear" | "arap" | "stable-neo-hookean"),
-//              E, nu  -- or --  mu, lambda
-//   [time]     h, tol, max_newton
-//   [solver]   projection ("diagonal" | "full" | "none"), inversion_filter,
-//              integrator ("implicit-euler" | "symplectic-euler"),
-//              linear_solver ("auto" | "ldlt" | "cholmod" | "pcg"),
-//              step_expansion, friction_crossing_stop (Newton's safeguards, core/newton.h)
-//   [initial]  velocity = [vx, vy]
-//   [gravity]  g = [gx, gy]
-//   [ground]   y, friction
-//   [ceiling]  y, velocity, stop
-//   [barrier]  dhat, kappa
+//   [mesh] [material] [time] [solver] [initial] [gravity] [ground] [ceiling] [barrier]
 // A missing [gravity], [ground] or [ceiling] section switches that term off; in those
-// sections `enabled = false` does the same (useful with --set). Every error is one line:
-// "<file>:<line>: <section.key>: <reason>".
+// sections `enabled = false` does the same (useful with --set). Every error is one line,
+// "<file>:<line>: <section.key>: <reason>", naming the key the user wrote.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <string_view>
-#include <vector>
 
 #include "scene/scene.h"
+#include "scene_io/scene_keys.h"
 
 namespace invfree {
 
@@ -33,15 +21,14 @@ struct SceneLoad {
   std::string error;  // set when scene is empty
 };
 
-// A built-in scene name, or a path to a TOML file. The result is validated.
+// A built-in scene name (scene_io/builtin_scenes.h), or a path to a TOML file. The result
+// is validated.
 SceneLoad load_scene(const std::string& name_or_path);
-// Parses TOML text; `source` names it in errors. The result is not yet validated.
+// Parses TOML text; `source` names it in errors. The result is validated.
 SceneLoad parse_scene_toml(std::string_view text, const std::string& source);
 // Applies "section.key=value" (value in TOML syntax, strings may be unquoted).
-// Returns "" on success, otherwise a one-line error.
+// Returns "" on success, otherwise a one-line error; the scene is unchanged then.
 std::string apply_override(SceneDef& scene, std::string_view assignment);
-// Every "section.key" a scene file or --set accepts, in table order (tests, fuzz dictionary).
-std::vector<std::string> scene_keys();
 // Serialises a scene as a TOML file that parse_scene_toml reads back to the same scene.
 std::string scene_to_toml(const SceneDef& scene);
 

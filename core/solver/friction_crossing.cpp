@@ -2,13 +2,11 @@
 
 #include <cmath>
 
-#include "solver/line_search_filter.h"
-
 namespace invfree {
 
 int stop_friction_crossings(const StepProblem& problem, const VecX& z, VecX& trial,
                             FrictionCrossingScratch& s) {
-  if (!problem.friction_on) return 0;
+  if (!problem.friction.on) return 0;
   const int n = problem.node_count();
   if (static_cast<int>(s.stopped.size()) != n) {
     s.stopped.assign(n, 0);
@@ -17,10 +15,10 @@ int stop_friction_crossings(const StepProblem& problem, const VecX& z, VecX& tri
   }
   s.nodes.clear();
   for (int i = 0; i < n; ++i) {
-    if (problem.friction_weight[i] <= 0.0) continue;
+    if (problem.friction.weight[i] <= 0.0) continue;
     const double x0 = problem.x_start[2 * i];
     const double u0 = z[2 * i] - x0, u1 = trial[2 * i] - x0;
-    if (u0 * u1 < 0.0 && std::abs(u1) >= problem.friction_eps_u) {
+    if (u0 * u1 < 0.0 && std::abs(u1) >= problem.friction.eps_u) {
       s.stopped[i] = 1;
       s.step_x[i] = trial[2 * i];
       trial[2 * i] = x0;

@@ -1,7 +1,7 @@
 // Friction's kink in the line search: a sliding node that a step carries across zero slip
 // stops at zero slip.
 //
-// Lagged friction on the ground (core/contact.h) is mu_f lambda |u| while a node slides
+// Lagged friction on the ground (core/potential/friction.h) is mu_f lambda |u| while a node slides
 // (|u| >= eps_u = eps_v h) and smooth only inside the window |u| < eps_u. The projected
 // Hessian sees no friction curvature while the node slides, so where the node should
 // stick, Newton's direction overshoots u = 0 by far more than eps_u, the next one comes

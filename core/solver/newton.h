@@ -2,41 +2,35 @@
 //   start:  z = x^n, or (while the ceiling moves) x^n moved toward the inertial prediction
 //           x^n + h v^n as far as the line-search filters allow (a feasible warm start)
 //   repeat: p = -H^-1 g (H projected to PSD);  stop when |p|_inf / h < tol
-//           alpha = min(1, inversion-free filter, plane filter)
+//           alpha = min(1, every term's filter)           (largest_feasible_step)
 //           halve alpha until E(z + alpha p) <= E(z);  z += alpha p
-// The ceiling (the demo's moving Dirichlet boundary) is an unknown pulled to its target
-// by a penalty; as soon as jumping to the target keeps every node at least 10% of its
-// gap away, it is set exactly there and eliminated. If Newton converges before that, the
-// penalty stiffness doubles (as in the demo).
+// The ceiling (the demo's moving Dirichlet boundary) is an unknown pulled to its target by
+// a penalty (potential/ceiling_penalty.h); as soon as jumping to the target keeps every
+// node at least 10% of its gap away, it is set exactly there and eliminated. If Newton
+// converges before that, the penalty stiffness doubles (as in the demo).
+//
 // The warm start changes where Newton begins, not what it converges to or how it stops:
-// the minimiser of the incremental potential is near x^n + h v^n whenever the motion is
-// smooth (it is exactly there without forces), so starting there saves iterations (about
-// 1.4 per step of `compress` at n_seg 16-48). It keeps the ceiling's jump safe while the
-// ceiling pushes the body down (the contact nodes move with it), and the filters keep the
-// start feasible (every triangle above 10% of its area, every node at least 10% of its gap
-// from each plane). The caller uses it while the ceiling moves: once the boundary is at
-// rest, starting at x^n (the reference's choice) lets a body whose remaining motion is
-// within the tolerance stop, as in the demo, instead of drifting at that level.
+// without forces the minimiser is exactly x^n + h v^n, and near it whenever the motion is
+// smooth. The filters keep the start feasible. The caller uses it only while the ceiling
+// moves: once the boundary is at rest, starting at x^n (the reference's choice) lets a
+// body whose remaining motion is within the tolerance stop, as in the demo.
+//
 // Two safeguards for the non-smooth and non-convex parts of E change the path Newton
 // takes, never the energy, the stopping test or the invariants (each off by a setting):
 //  - step expansion: when the full step is taken and E falls at least 1.5x what the
 //    quadratic model predicts, the true curvature along p is below half the model's (a
 //    buckling or rolling mode whose negative curvature the PSD projection clamps to zero,
 //    or a sliding node whose friction is linear); alpha doubles while E keeps falling and
-//    the filters allow, up to 16. Measured at n_seg 64 without friction: the worst step
-//    98 -> 38 iterations.
-//  - friction crossing stop (core/friction_crossing.h): lagged friction is linear while a
-//    node slides (|u| >= eps_u = 1e-5 m), so the projected Hessian has no friction
-//    curvature there and a direction ~100 eps_u long carries a node that should stick
-//    across u = 0, back and forth (n_seg 256 hit the 100-iteration cap that way). A
-//    sliding node that the trial point carries across u = 0 stops at u = 0 instead.
-//    Measured on `compress`, Newton iterations per step with both safeguards, against
-//    step expansion and the earlier remedy (the curvature mu_f lambda / |u| added to a
-//    node once its slip had changed sign): n_seg 32 1.95 -> 1.57, 64 2.26 -> 1.91,
-//    128 2.67 -> 2.07, 256 4.99 -> 3.95 (worst step 84 -> 43).
-// The linear solve may be inexact (PCG, see linear_solver.h); it is run until the stopping
-// decision is the one the exact direction would give, and each of its directions is a
-// descent direction, so the test and the invariants are exactly those of a direct solve.
+//    the filters allow, up to 16.
+//  - friction crossing stop (solver/friction_crossing.h): a sliding node that the trial
+//    point carries across zero slip stops there instead of oscillating around it.
+// Their effect on `compress` (Newton iterations per step, the worst step) is measured by
+// `invfree study` / `invfree stability` with the method `plain-line-search` (both off);
+// see docs/study.md.
+//
+// The linear solve may be inexact (PCG, see linalg/linear_solver.h); it is run until the
+// stopping decision is the one the exact direction would give, and each of its directions
+// is a descent direction, so the test and the invariants are exactly those of a direct solve.
 // Inputs: the step's problem, z = [x; c] at the start (feasible). Output: z at the
 // minimum (or the last iterate on failure) and a report; never loops forever.
 #pragma once
@@ -51,13 +45,10 @@ namespace invfree {
 struct NewtonSettings {
   double tol = 1e-2;  // on |p|_inf / h, in m/s
   int max_iterations = 100;
-  bool inversion_filter = true;
   int max_halvings = 60;   // 2^-60: below double precision of any step
   bool predictor = false;  // warm start from the filtered x^n + h v^n
-  // PCG: stop when a CG step adds < 10% to the model decrease (linear_solver.h). Was 1e-2;
-  // on `compress`, CG iterations (Newton iterations) per step at n_seg 64 / 128 / 256 went
-  // 9.8 / 15.0 / 37.3 (1.89 / 2.05 / 3.83) -> 8.7 / 14.5 / 28.6 (1.91 / 2.19 / 3.68), the
-  // worst step at n_seg 256 73 -> 44 iterations: looser directions, hardly more of them.
+  // PCG stops when a CG step adds less than this fraction to the model decrease
+  // (linalg/linear_solver.h): looser directions, hardly more Newton iterations.
   double forcing = 1e-1;
   bool step_expansion = true;          // see above
   bool friction_crossing_stop = true;  // see above

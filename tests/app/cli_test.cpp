@@ -83,6 +83,36 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
             std::string::npos);
 }
 
+// A dotted key or table header tens of thousands of levels deep (100 kB, under the 1 MiB
+// limit) overflowed toml++'s recursion (SIGSEGV, exit 139). Every command that reads a
+// scene refuses it with one line and exit 2, before toml++ sees it.
+TEST(Cli, DeepDottedKeysExitTwoWithOneLine) {
+  const std::string dir = ::testing::TempDir() + "/cli_deep_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  std::string chain;
+  for (int k = 0; k < 50000; ++k) chain += "a.";
+  const std::pair<const char*, std::string> files[] = {
+      {"key", chain + "b = 1\n"},
+      {"header", "[" + chain + "b]\n"},
+      {"array_header", "[[" + chain + "b]]\n"},
+  };
+  for (const auto& [name, text] : files) {
+    const std::string path = dir + "/" + name + ".toml";
+    { std::ofstream(path) << text; }
+    const std::string commands[] = {"simulate --steps 1 --scene ",
+                                    "render --frames 1 --out " + dir + "/out --scene "};
+    for (const std::string& command : commands) {
+      const CommandResult r = run(command + path);
+      EXPECT_EQ(r.code, 2) << command << name << "\n" << r.err.substr(0, 300);
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err.substr(0, 300);
+      EXPECT_EQ(r.err, "invfree: " + path +
+                           ":1: malformed TOML: a dotted key with more than two parts (a scene "
+                           "needs section.key)\n");
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, HelpShowsDefaultsAndExitCodes) {
   const CommandResult top = run("--help");
   EXPECT_EQ(top.code, 0);
@@ -157,8 +187,8 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --set gravity.g=1", "gravity.g: expected an array of two numbers"},
       {"simulate --obj " + dir,
        dir + ": directory is not empty (use --force to write into it anyway)"},
-      // An empty path is bad input for every output option (study and stability used to
-      // write their files at the filesystem root).
+      // An empty path is bad input for every output option (not "" + "/study.csv", a file
+      // at the filesystem root).
       {"simulate --obj ''", "--obj: empty path"},
       {"simulate --csv ''", "--csv: empty path"},
       {"render --out ''", "--out: empty path"},

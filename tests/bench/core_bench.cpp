@@ -3,21 +3,28 @@
 // gradient + Hessian), one whole assembly and one energy evaluation of a compressed
 // mesh (2 threads), and `compress` steps in the compression phase at several
 // resolutions (the mesh is first run to step 120 outside the timing, so the steps
-// measured have the ceiling pushing and contacts active).
+// measured have the ceiling pushing and contacts active); self-contact's broad phase and
+// per-iteration pair work on two stacked squares.
 //   build/release/tests/bench/invfree_bench --benchmark_filter=Step
 // The whole-run scaling curve (every phase of the scene, medians) is `invfree bench`.
 #include <benchmark/benchmark.h>
 
 #include <random>
 
+#include "collision/broad_phase.h"
 #include "linalg/linear_solver.h"
 #include "linalg/parallel.h"
 #include "linalg/sparse_ldlt.h"
 #include "material/models.h"
 #include "material/triangle_elasticity.h"
 #include "potential/incremental_potential.h"
+#include "potential/self_contact_barrier.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "solver/ccd.h"
+#include "tests/scene/body_fixtures.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
@@ -94,7 +101,7 @@ BENCHMARK(BM_FusedGradientHessian<StableNeoHookean>);
 
 // A `compress` simulation at n_seg = n run into its compression phase (step 120).
 Simulation compressed(int n_seg) {
-  SceneDef scene = *find_builtin_scene("compress");
+  SceneDef scene = *load_builtin_scene("compress").scene;
   scene.n_seg = n_seg;
   Simulation sim = make_simulation(scene);
   for (int k = 0; k < 120; ++k) step(sim);
@@ -102,7 +109,7 @@ Simulation compressed(int n_seg) {
 }
 
 VecX state_of(const Simulation& sim) {
-  VecX z(sim.problem.dof_count());
+  VecX z(sim.workspace->problem.dof_count());
   z.head(sim.x.size()) = sim.x;
   z[sim.x.size()] = sim.ceiling_y;
   return z;
@@ -113,7 +120,8 @@ void BM_Assembly(benchmark::State& state) {
   Simulation sim = compressed(static_cast<int>(state.range(0)));
   const VecX z = state_of(sim);
   VecX g;
-  for (auto _ : state) ip_gradient_hessian(sim.problem, z, g, sim.workspace.hessian);
+  for (auto _ : state)
+    ip_gradient_hessian(sim.workspace->problem, z, g, sim.workspace->newton.hessian);
   state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
   state.counters["threads"] = thread_count();
 }
@@ -123,7 +131,7 @@ BENCHMARK(BM_Assembly)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 void BM_Energy(benchmark::State& state) {
   Simulation sim = compressed(static_cast<int>(state.range(0)));
   const VecX z = state_of(sim);
-  for (auto _ : state) benchmark::DoNotOptimize(ip_energy(sim.problem, z));
+  for (auto _ : state) benchmark::DoNotOptimize(ip_energy(sim.workspace->problem, z));
   state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
 }
 BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
@@ -132,17 +140,18 @@ BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 // step (the solver's ordering and split): the kernel PCG repeats once per iteration. A
 // solve's work and memory traffic depend on the pattern alone, not on the values, so
 // the first step's Hessian times it as well as a compressed one and takes a second
-// instead of the 120 steps (~40 s at n_seg 256) that `compressed` needs.
+// instead of the 120 steps that `compressed` needs (about 40 s at n_seg 256:
+// `invfree bench --sizes 256 --steps 120`).
 // float:1 reads L rounded to float, as PCG does from kFloatPreconditionerMinEntries.
 // Items: entries of L.
 void BM_LdltSolve(benchmark::State& state) {
-  SceneDef scene = *find_builtin_scene("compress");
+  SceneDef scene = *load_builtin_scene("compress").scene;
   scene.n_seg = static_cast<int>(state.range(0));
   Simulation sim = make_simulation(scene);
   step(sim);
   VecX g;
-  ip_gradient_hessian(sim.problem, state_of(sim), g, sim.workspace.hessian);
-  const Eigen::SparseMatrix<double>& h = sim.workspace.hessian.matrix;
+  ip_gradient_hessian(sim.workspace->problem, state_of(sim), g, sim.workspace->newton.hessian);
+  const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
   SparseLdlt ldlt;
   analyze_like_the_solver(h, ldlt);  // METIS from 5,000 unknowns, as in the solver
   if (!ldlt.factorize(h)) {
@@ -197,6 +206,55 @@ BENCHMARK(BM_CompressStep)
     ->Arg(64)
     ->Arg(256)
     ->Unit(benchmark::kMillisecond);
+
+// Self-contact on two unit squares stacked 5 mm apart (n_seg each: 4 n_seg boundary edges
+// per body, about n_seg pairs within dhat), every node moved by a random step of up to
+// 2 mm: the broad phase over the step (dhat 1 cm), then what the pairs cost a Newton
+// iteration: the barrier's value, its gradient and projected Hessians, and the CCD bound.
+// Items: boundary edges.
+struct StackedSquares {
+  test::TwoSquares two;
+  VecX x, p;
+  explicit StackedSquares(int n_seg) : two(test::two_squares(1.0, n_seg, Vec2(0.1, -1.005))) {
+    x = test::flat_positions(two.mesh.rest);
+    p.resize(x.size());
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<double> u(-1e-3, 1e-3);
+    for (int i = 0; i < p.size(); ++i) p[i] = u(rng);
+  }
+};
+
+void BM_SelfContactBroadPhase(benchmark::State& state) {
+  const StackedSquares s(static_cast<int>(state.range(0)));
+  BroadPhaseGrid grid;
+  std::vector<PointEdgePair> pairs;
+  for (auto _ : state)
+    swept_point_edge_candidates(s.two.boundary, s.x, s.p, 1.0, 0.01, grid, pairs);
+  state.SetItemsProcessed(state.iterations() * s.two.boundary.edge_count());
+  state.counters["pairs"] = static_cast<double>(pairs.size());
+}
+BENCHMARK(BM_SelfContactBroadPhase)->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecond);
+
+void BM_SelfContactBarrier(benchmark::State& state) {
+  const StackedSquares s(static_cast<int>(state.range(0)));
+  BroadPhaseGrid grid;
+  std::vector<PointEdgePair> pairs;
+  swept_point_edge_candidates(s.two.boundary, s.x, s.p, 1.0, 0.01, grid, pairs);
+  const SelfContactParams params;
+  VecX g = VecX::Zero(s.x.size());
+  std::vector<PointEdgeHessian> hessians;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        self_contact_energy(s.two.boundary, s.two.mesh.rest, pairs, s.x, params));
+    hessians.clear();
+    add_self_contact_gradient_hessian(s.two.boundary, s.two.mesh.rest, pairs, s.x, params, 1.0, g,
+                                      hessians);
+    benchmark::DoNotOptimize(self_contact_step(s.two.boundary, pairs, s.x, s.p, 1.0));
+  }
+  state.SetItemsProcessed(state.iterations() * s.two.boundary.edge_count());
+  state.counters["active"] = static_cast<double>(hessians.size());
+}
+BENCHMARK(BM_SelfContactBarrier)->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace invfree

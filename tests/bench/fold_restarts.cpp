@@ -4,7 +4,8 @@
 // moved by at most eps / 2, a fixed pseudo-random pattern), each time up to step `to`,
 // printing the Newton iterations (total and worst step) and the mean ms per step.
 // Every restart begins with a fresh factorisation, so even the unperturbed one is a draw
-// of its own. Used for n_seg 256's fold steps (README, Performance: "What is left"):
+// of its own. For n_seg 256's fold steps (near step 250, where Newton takes the most
+// iterations: `invfree bench --sizes 256` reports the worst step):
 //   build/release/tests/bench/invfree_fold_restarts 256 225 265 1e-12 2e-12 3e-12
 // Not a test: it takes minutes at n_seg 256 and asserts nothing.
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 
 using namespace invfree;
@@ -33,7 +35,7 @@ SavedState save(const Simulation& sim) {
   s.ceiling_y = sim.ceiling_y;
   s.ceiling_nominal = sim.ceiling_nominal;
   s.time = sim.time;
-  s.ceiling_stiffness = sim.problem.ceiling_stiffness;
+  s.ceiling_stiffness = sim.ceiling_stiffness;
   s.step_count = sim.step_count;
   return s;
 }
@@ -44,7 +46,7 @@ void restore(const SavedState& s, Simulation& sim) {
   sim.ceiling_y = s.ceiling_y;
   sim.ceiling_nominal = s.ceiling_nominal;
   sim.time = s.time;
-  sim.problem.ceiling_stiffness = s.ceiling_stiffness;
+  sim.ceiling_stiffness = s.ceiling_stiffness;
   sim.step_count = s.step_count;
 }
 
@@ -64,7 +66,7 @@ int main(int argc, char** argv) {
   std::vector<double> eps{0.0};
   for (int i = 4; i < argc; ++i) eps.push_back(std::atof(argv[i]));
 
-  SceneDef scene = *find_builtin_scene("compress");
+  SceneDef scene = *load_builtin_scene("compress").scene;
   scene.n_seg = n_seg;
   if (const std::string error = validate_scene(scene); !error.empty()) {
     std::fprintf(stderr, "n_seg %d: %s\n", n_seg, error.c_str());

@@ -1,4 +1,4 @@
-// libFuzzer target over the scene parser and the --set overrides (core/scene_file.h).
+// libFuzzer target over the scene parser and the --set overrides (scene_io/scene_file.h).
 // Input: TOML text, optionally followed by a line "%%" and then one --set assignment per
 // line. Without "%%" the whole input is also tried as one assignment, so every seed
 // exercises both entry points. Besides "no crash, no sanitizer report", it checks the
@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 
 namespace {
@@ -63,7 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view toml = input.substr(0, split);
 
   const invfree::SceneLoad load = invfree::parse_scene_toml(toml, "fuzz.toml");
-  invfree::SceneDef base = *invfree::find_builtin_scene("compress");
+  invfree::SceneDef base = *invfree::load_builtin_scene("compress").scene;
   if (load.scene) {
     check_scene(*load.scene);
     base = *load.scene;

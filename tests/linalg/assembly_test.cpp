@@ -11,7 +11,9 @@
 #include "material/models.h"
 #include "material/triangle_elasticity.h"
 #include "potential/incremental_potential.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 #include "tests/test_support.h"
 
 namespace invfree {
@@ -84,13 +86,13 @@ struct Problem {
   Simulation sim;
   VecX z;
   explicit Problem(int n_seg) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = n_seg;
     sim = make_simulation(s);
     for (int k = 0; k < 120; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);
     // The step's problem as the solver sees it, at a perturbed state.
     step(sim);
-    z.resize(sim.problem.dof_count());
+    z.resize(sim.workspace->problem.dof_count());
     z.head(sim.x.size()) = sim.x;
     z[sim.x.size()] = sim.ceiling_y;
     std::mt19937 rng(5);
@@ -107,11 +109,11 @@ TEST(ParallelAssembly, BitIdenticalForAnyThreadCount) {
   for (int threads : {1, 2, 3, 4}) {
     set_thread_count(threads);
     VecX g;
-    SparseHessian h = p.sim.workspace.hessian;
-    ip_gradient_hessian(p.sim.problem, p.z, g, h);
+    SparseHessian h = p.sim.workspace->newton.hessian;
+    ip_gradient_hessian(p.sim.workspace->problem, p.z, g, h);
     gradients.push_back(g);
     values.push_back(Eigen::Map<const VecX>(h.matrix.valuePtr(), h.matrix.nonZeros()));
-    energies.push_back(ip_energy(p.sim.problem, p.z));
+    energies.push_back(ip_energy(p.sim.workspace->problem, p.z));
   }
   set_thread_count(0);
   for (std::size_t k = 1; k < gradients.size(); ++k) {
@@ -128,7 +130,7 @@ TEST(ParallelAssembly, BitIdenticalForAnyThreadCount) {
 TEST(ParallelAssembly, WholeRunBitIdenticalForAnyThreadCount) {
   auto run = [](int threads) {
     set_thread_count(threads);
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = 40;  // 3200 triangles: parallel assembly and PCG products
     Simulation sim = make_simulation(s);
     for (int k = 0; k < 150; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);

@@ -9,7 +9,9 @@
 #include <Eigen/SparseCholesky>
 
 #include "potential/incremental_potential.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
@@ -21,21 +23,22 @@ struct System {
   VecX g, b;
   double lambda_min = 0.0;
   explicit System(int n_seg, int steps = 150, double perturb = 0.0) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = n_seg;
     s.linear_solver = LinearSolverKind::Ldlt;
     sim = make_simulation(s);
     for (int k = 0; k < steps; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);
-    VecX z(sim.problem.dof_count());
+    VecX z(sim.workspace->problem.dof_count());
     z.head(sim.x.size()) = sim.x + perturb * s.h * sim.v;  // part of a step ahead: not the minimum
     z[sim.x.size()] = sim.ceiling_y;
-    ip_gradient_hessian(sim.problem, z, g, sim.workspace.hessian);
-    H = sim.workspace.hessian.matrix;
+    ip_gradient_hessian(sim.workspace->problem, z, g, sim.workspace->newton.hessian);
+    H = sim.workspace->newton.hessian.matrix;
     b = -g;
-    lambda_min = sim.workspace.min_node_mass;
-    if (sim.problem.ceiling_on)
-      lambda_min =
-          std::min(lambda_min, sim.problem.ceiling_fixed ? 1.0 : sim.problem.ceiling_stiffness);
+    lambda_min = sim.workspace->newton.min_node_mass;
+    if (sim.workspace->problem.ceiling.on)
+      lambda_min = std::min(lambda_min, sim.workspace->problem.ceiling_penalty.fixed
+                                            ? 1.0
+                                            : sim.workspace->problem.ceiling_penalty.stiffness);
   }
 };
 
@@ -117,11 +120,11 @@ TEST(Pcg, ReusesOneFactorisationAcrossNearbySystems) {
   const int solves = 10;
   for (int k = 0; k < solves; ++k) {
     ASSERT_EQ(step(sys.sim).status, StepStatus::Ok);
-    VecX z(sys.sim.problem.dof_count()), g;
+    VecX z(sys.sim.workspace->problem.dof_count()), g;
     z.head(sys.sim.x.size()) = sys.sim.x;
     z[sys.sim.x.size()] = sys.sim.ceiling_y;
-    ip_gradient_hessian(sys.sim.problem, z, g, sys.sim.workspace.hessian);
-    const Eigen::SparseMatrix<double>& H = sys.sim.workspace.hessian.matrix;
+    ip_gradient_hessian(sys.sim.workspace->problem, z, g, sys.sim.workspace->newton.hessian);
+    const Eigen::SparseMatrix<double>& H = sys.sim.workspace->newton.hessian.matrix;
     const VecX b = -g;
     SolveRequest request;
     request.forcing = 1e-2;  // Newton's forcing term (relative model decrease of a CG step)
@@ -146,7 +149,7 @@ double max_speed(const Simulation& sim) {
 TEST(Simulation, EveryLinearSolverKeepsTheInvariantsAndComesToRest) {
   for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Ldlt,
                                 LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = 10;
     s.linear_solver = kind;
     Simulation sim = make_simulation(s);
@@ -174,7 +177,7 @@ TEST(Simulation, ExactHessianRunsWithEverySolverThatAcceptsIt) {
   // Projection "none" may give an indefinite Hessian: auto uses LDL^T; a forced PCG falls
   // back to its factorisation when CG meets negative curvature.
   for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Pcg}) {
-    SceneDef s = *find_builtin_scene("drop");
+    SceneDef s = *load_builtin_scene("drop").scene;
     s.projection = HessianProjection::None;
     s.n_seg = 6;
     s.linear_solver = kind;

@@ -18,6 +18,7 @@
 #include "app/live/param_limits.h"
 #include "app/live/view_transform.h"
 #include "material/triangle_elasticity.h"
+#include "scene_io/builtin_scenes.h"
 
 namespace invfree::live {
 namespace {
@@ -213,7 +214,8 @@ TEST(LiveView, ScreenAndWorldMapsAreInverseAndZoomKeepsTheAnchor) {
 
 std::vector<SceneChoice> compress_choices() {
   std::vector<SceneChoice> c;
-  for (const auto& e : builtin_scenes()) c.push_back({e.name, e.make()});
+  for (const auto& e : builtin_scenes())
+    c.push_back({std::string(e.name), *load_builtin_scene(e.name).scene});
   return c;
 }
 
@@ -287,7 +289,7 @@ TEST(LiveController, EditsInTheMiddleOfACompressionKeepTheStateValid) {
 }
 
 TEST(LiveController, SwitchingToNeoHookeanIsRefusedWhileInverted) {
-  SceneDef soft = *find_builtin_scene("compress");
+  SceneDef soft = *load_builtin_scene("compress").scene;
   soft.model = Model::Linear;
   soft.lame = {1e2, 0.0};  // far too soft for its weight: linear elasticity inverts
   LiveController lc({{"soft", soft}}, 0);
@@ -358,7 +360,7 @@ TEST(LiveController, InvalidSettingsAreRefusedAndMeshChangesRestart) {
   EXPECT_EQ(lc.settings().n_seg, 8);
   lc.select_scene(1);
   EXPECT_EQ(lc.settings().name, "drop");
-  EXPECT_EQ(lc.settings().n_seg, find_builtin_scene("drop")->n_seg);
+  EXPECT_EQ(lc.settings().n_seg, load_builtin_scene("drop").scene->n_seg);
   EXPECT_FALSE(lc.settings().has_ceiling);
 }
 

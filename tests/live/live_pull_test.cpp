@@ -8,7 +8,9 @@
 
 #include "app/live/live_controller.h"
 #include "potential/incremental_potential.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 #include "tests/test_support.h"
 
 namespace invfree {
@@ -27,15 +29,16 @@ struct PullFixture {
     const int n = mesh.node_count();
     p.mesh = &mesh;
     p.mass = &mass;
-    p.model = Model::NeoHookean;
-    p.lame = lame_from_young_poisson(1e4, 0.3);
-    p.projection = HessianProjection::None;
+    p.elasticity.model = Model::NeoHookean;
+    p.elasticity.lame = lame_from_young_poisson(1e4, 0.3);
+    p.elasticity.projection = HessianProjection::None;
     p.h = 0.05;
-    p.gravity_on = true;
-    p.gravity = Vec2(0.0, -9.81);
-    p.barrier = {0.01, 1e5, 1.0 / 3};
-    p.ground_on = true;
-    p.ground_y = -0.6;
+    p.gravity.on = true;
+    p.gravity.g = Vec2(0.0, -9.81);
+    p.ground.barrier = {0.01, 1e5, 1.0 / 3};
+    p.ceiling.barrier = p.ground.barrier;
+    p.ground.on = true;
+    p.ground.y0 = -0.6;
     z.resize(2 * n);
     p.x_tilde.resize(2 * n);
     p.x_start.resize(2 * n);
@@ -44,10 +47,10 @@ struct PullFixture {
       p.x_tilde.segment<2>(2 * i) = mesh.rest[i] + 0.05 * Vec2(u(rng), u(rng));
     }
     p.x_start = z;
-    p.pull_on = true;
-    p.pull_node = static_cast<int>(seed) % n;
-    p.pull_target = Vec2(0.7 * u(rng), 0.9 + 0.3 * u(rng));
-    p.pull_stiffness = 2e4 * (1.5 + u(rng));
+    p.pull.on = true;
+    p.pull.node = static_cast<int>(seed) % n;
+    p.pull.target = Vec2(0.7 * u(rng), 0.9 + 0.3 * u(rng));
+    p.pull.stiffness = 2e4 * (1.5 + u(rng));
   }
 };
 
@@ -82,13 +85,13 @@ TEST(PullSpring, AddsExactlyItsOwnTerm) {
   ip_gradient_hessian(f.p, f.z, g_on, f.hess);
   const Eigen::MatrixXd h_on(f.hess.matrix);
   const double e_on = ip_energy(f.p, f.z);
-  f.p.pull_on = false;
+  f.p.pull.on = false;
   ip_gradient_hessian(f.p, f.z, g_off, f.hess);
   const Eigen::MatrixXd h_off(f.hess.matrix);
   const double e_off = ip_energy(f.p, f.z);
-  const int i = f.p.pull_node;
-  const double k = f.p.h * f.p.h * f.p.pull_stiffness;
-  const Vec2 d = f.z.segment<2>(2 * i) - f.p.pull_target;
+  const int i = f.p.pull.node;
+  const double k = f.p.h * f.p.h * f.p.pull.stiffness;
+  const Vec2 d = f.z.segment<2>(2 * i) - f.p.pull.target;
   EXPECT_NEAR(e_on - e_off, 0.5 * k * d.squaredNorm(), 1e-9 * std::abs(e_on));
   VecX dg = VecX::Zero(g_on.size());
   dg.segment<2>(2 * i) = k * d;
@@ -99,7 +102,7 @@ TEST(PullSpring, AddsExactlyItsOwnTerm) {
 }
 
 TEST(PullSpring, PullsANodeOnlyWhileOn) {
-  SceneDef s = *find_builtin_scene("drop");
+  SceneDef s = *load_builtin_scene("drop").scene;
   Simulation pulled = make_simulation(s), free = make_simulation(s);
   const int node = s.n_seg * (s.n_seg + 1) + s.n_seg;  // the top right corner
   const Vec2 start = pulled.x.segment<2>(2 * node);
@@ -117,7 +120,7 @@ TEST(PullSpring, PullsANodeOnlyWhileOn) {
   // from the pulled steps would make PCG stop at another iterate, equal only to within
   // Newton's tolerance.)
   pulled.pull.on = false;
-  pulled.workspace.solver.invalidate();
+  pulled.workspace->newton.solver.invalidate();
   Simulation copy = make_simulation(s);
   copy.x = pulled.x;
   copy.v = pulled.v;
@@ -127,7 +130,7 @@ TEST(PullSpring, PullsANodeOnlyWhileOn) {
 }
 
 TEST(PullSpring, TheControllerGrabsAndReleases) {
-  live::LiveController lc({{"compress", *find_builtin_scene("compress")}}, 0);
+  live::LiveController lc({{"compress", *load_builtin_scene("compress").scene}}, 0);
   const int node = 2;  // bottom row
   const Vec2 start = lc.simulation().x.segment<2>(2 * node);
   lc.begin_pull(node, start + Vec2(-0.6, 0.3));

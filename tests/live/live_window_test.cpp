@@ -15,6 +15,7 @@
 #include <filesystem>
 
 #include "app/live/live_app.h"
+#include "scene_io/builtin_scenes.h"
 #include "tests/render/image_compare.h"
 
 namespace invfree::live {
@@ -68,7 +69,8 @@ TEST(LiveWindow, PausedPanelMatchesGolden) {
 
 std::unique_ptr<LiveApp> open_app(LiveOptions o) {
   if (o.scenes.empty()) {
-    for (const auto& e : builtin_scenes()) o.scenes.push_back({e.name, e.make()});
+    for (const auto& e : builtin_scenes())
+      o.scenes.push_back({std::string(e.name), *load_builtin_scene(e.name).scene});
   }
   o.vsync = false;
   std::string error;
@@ -227,7 +229,7 @@ namespace {
 
 TEST(LiveWindow, DraggingANodePullsItOnlyWhileHeld) {
   LiveOptions o;
-  o.scenes = {{"drop", *find_builtin_scene("drop")}};
+  o.scenes = {{"drop", *load_builtin_scene("drop").scene}};
   auto app = open_app(o);
   ASSERT_TRUE(app);
   app->frame();

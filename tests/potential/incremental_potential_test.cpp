@@ -25,21 +25,22 @@ struct Fixture {
     const int n = mesh.node_count();
     p.mesh = &mesh;
     p.mass = &mass;
-    p.model = model;
-    p.lame = lame_from_young_poisson(1e4, 0.3);
-    p.projection = HessianProjection::None;
+    p.elasticity.model = model;
+    p.elasticity.lame = lame_from_young_poisson(1e4, 0.3);
+    p.elasticity.projection = HessianProjection::None;
     p.h = 0.5;  // a large step keeps eps_u = eps_v h well above the FD step
-    p.gravity_on = true;
-    p.gravity = Vec2(0.0, -9.81);
-    p.barrier = {0.01, 1e5, 1.0 / 3};
-    p.ground_on = true;
-    p.ground_y = -0.5 - 0.005;
-    p.friction_on = true;
-    p.friction_eps_u = 1e-3 * p.h;
-    p.friction_weight.assign(n, 0.0);
-    p.ceiling_on = true;
-    p.ceiling_target = 0.5 + 0.002;
-    p.ceiling_stiffness = 1000.0 * mass[0];
+    p.gravity.on = true;
+    p.gravity.g = Vec2(0.0, -9.81);
+    p.ground.barrier = {0.01, 1e5, 1.0 / 3};
+    p.ceiling.barrier = p.ground.barrier;
+    p.ground.on = true;
+    p.ground.y0 = -0.5 - 0.005;
+    p.friction.on = true;
+    p.friction.eps_u = 1e-3 * p.h;
+    p.friction.weight.assign(n, 0.0);
+    p.ceiling.on = true;
+    p.ceiling_penalty.target = 0.5 + 0.002;
+    p.ceiling_penalty.stiffness = 1000.0 * mass[0];
     z.resize(2 * n + 1);
     p.x_tilde.resize(2 * n);
     p.x_start.resize(2 * n);
@@ -47,14 +48,14 @@ struct Fixture {
       z.segment<2>(2 * i) = mesh.rest[i] + 0.02 * Vec2(u(rng), u(rng));
       // Keep boundary rows inside the barrier band, never through a plane.
       if (std::abs(mesh.rest[i].y() + 0.5) < 1e-12)
-        z[2 * i + 1] = p.ground_y + 0.002 + 0.006 * (u(rng) + 1) / 2;
+        z[2 * i + 1] = p.ground.y0 + 0.002 + 0.006 * (u(rng) + 1) / 2;
       if (std::abs(mesh.rest[i].y() - 0.5) < 1e-12)
         z[2 * i + 1] = 0.5 + 0.006 - 0.002 - 0.006 * (u(rng) + 1) / 2;
       p.x_tilde.segment<2>(2 * i) = mesh.rest[i] + 0.05 * Vec2(u(rng), u(rng));
       // Friction displacement: half the nodes inside eps_u (smoothed), half beyond (sliding).
       p.x_start.segment<2>(2 * i) = z.segment<2>(2 * i);
-      p.x_start[2 * i] -= (i % 2 ? 0.4 : 3.0) * p.friction_eps_u * (u(rng) > 0 ? 1 : -1);
-      p.friction_weight[i] = 50.0 * (u(rng) + 1.5);
+      p.x_start[2 * i] -= (i % 2 ? 0.4 : 3.0) * p.friction.eps_u * (u(rng) > 0 ? 1 : -1);
+      p.friction.weight[i] = 50.0 * (u(rng) + 1.5);
     }
     z[2 * n] = 0.5 + 0.006;
   }
@@ -93,7 +94,7 @@ TEST(IncrementalPotential, InfiniteOutsideTheFeasibleSet) {
   Fixture f(Model::NeoHookean, 1);
   EXPECT_TRUE(std::isfinite(ip_energy(f.p, f.z)));
   VecX below = f.z;
-  below[1] = f.p.ground_y - 1e-6;  // node 0 is on the bottom row
+  below[1] = f.p.ground.y0 - 1e-6;  // node 0 is on the bottom row
   EXPECT_TRUE(std::isinf(ip_energy(f.p, below)));
   VecX above = f.z;
   above[2 * 3 + 1] = f.z[f.z.size() - 1] + 1e-6;  // node 3 is on the top row
@@ -105,7 +106,7 @@ TEST(IncrementalPotential, InfiniteOutsideTheFeasibleSet) {
 
 TEST(IncrementalPotential, FixedCeilingIsEliminated) {
   Fixture f(Model::NeoHookean, 2);
-  f.p.ceiling_fixed = true;
+  f.p.ceiling_penalty.fixed = true;
   VecX g;
   ip_gradient_hessian(f.p, f.z, g, f.hess);
   const int c = static_cast<int>(f.z.size()) - 1;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 #include "simulation.h"
 #include "tests/reliability/process.h"
@@ -46,9 +47,10 @@ bool bit_identical(const VecX& a, const VecX& b) {
 }
 
 std::vector<SceneDef> scenes_under_test() {
-  std::vector<SceneDef> out = {*find_builtin_scene("compress"), *find_builtin_scene("drop")};
+  std::vector<SceneDef> out = {*load_builtin_scene("compress").scene,
+                               *load_builtin_scene("drop").scene};
   SceneDef jittered =
-      *find_builtin_scene("compress");  // irregular mesh, another model and projection
+      *load_builtin_scene("compress").scene;  // irregular mesh, another model and projection
   EXPECT_EQ(apply_override(jittered, "mesh.n_seg=12"), "");
   EXPECT_EQ(apply_override(jittered, "mesh.jitter=0.2"), "");
   EXPECT_EQ(apply_override(jittered, "material.model=stable-neo-hookean"), "");

@@ -18,7 +18,9 @@
 
 #include "potential/incremental_potential.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
@@ -82,7 +84,7 @@ std::string broken_invariant(const Simulation& sim) {
 
 TEST(Soak, TenThousandStepsWithChangingParameters) {
   constexpr int kSteps = 10000, kEvery = 50;
-  Simulation sim = make_simulation(*find_builtin_scene("compress"));
+  Simulation sim = make_simulation(*load_builtin_scene("compress").scene);
   ASSERT_EQ(sim.scene.model, Model::NeoHookean);
   Script script{20240607};
   long violations = 0, changes = 0, newton_iterations = 0;
@@ -126,7 +128,7 @@ TEST(Soak, TenThousandStepsWithChangingParameters) {
     // potentials, except that near convergence it takes the filtered step when the
     // predicted decrease is below E's own rounding noise, 64 eps (|E| + 1) per iteration
     // (core/newton.cpp); that noise is the only slack allowed.
-    const double e_start = ip_energy(sim.problem, z_start);
+    const double e_start = ip_energy(sim.workspace->problem, z_start);
     const double noise = 64.0 * std::numeric_limits<double>::epsilon() * (std::abs(e_start) + 1.0) *
                          std::max(1, r.newton_iterations);
     if (!std::isfinite(r.energy) || !std::isfinite(e_start))

@@ -1,4 +1,4 @@
-// Screenshot comparison for the golden tests. The rule (issue 3): two images match when
+// Screenshot comparison for the golden tests. The rule: two images match when
 // at most 0.1% of their pixels differ by more than 5/255 in any channel. On a mismatch
 // (or a missing golden) the caller gets the counts and the paths of the actual, expected
 // and amplified-difference images written for a person to look at.

@@ -16,6 +16,7 @@
 #include "app/render/offscreen_context.h"
 #include "app/render/renderer.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 #include "simulation.h"
 #include "tests/render/image_compare.h"
@@ -54,7 +55,7 @@ void expect_golden(const Simulation& sim, const std::string& name) {
 }
 
 SceneDef scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  SceneDef s = *find_builtin_scene(name);
+  SceneDef s = *load_builtin_scene(name).scene;
   for (const auto& o : overrides) {
     const std::string e = apply_override(s, o);
     EXPECT_TRUE(e.empty()) << e;

@@ -8,8 +8,10 @@
 #include "app/render/camera.h"
 #include "app/render/frame_text.h"
 #include "app/render/frame_writer.h"
+#include "app/render/shader_sources.h"
 #include "app/render/text_atlas.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "tests/render/image_compare.h"
 
 namespace invfree::render {
@@ -45,7 +47,7 @@ TEST(FrameText, ColorBarTicksArePowersOfTwoOnTheColormapScale) {
 }
 
 TEST(Camera, FixedPerSceneAndHoldsPlanesAndSquashedSquare) {
-  const SceneDef s = *find_builtin_scene("compress");
+  const SceneDef s = *load_builtin_scene("compress").scene;
   const WorldBox box = scene_world_box(s);
   EXPECT_LT(box.y0, s.ground_y);
   EXPECT_GT(box.y1, s.ceiling_y);
@@ -114,6 +116,23 @@ TEST(FrameWriter, PngRoundTripFlipsToTopRowFirst) {
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c)  // PNG row y is GL row h-1-y
         EXPECT_EQ(back.rgb[(y * w + x) * 3 + c], rgba[((h - 1 - y) * w + x) * 4 + c]);
+}
+
+// The web build's shaders: the same files with the version line switched for WebGL 2.
+TEST(ShaderSources, VersionLineSwitchedForOpenGlEsOnly) {
+  for (const char* source : {shader_sources().shape_vertex, shader_sources().shape_fragment,
+                             shader_sources().fill_fragment, shader_sources().text_vertex,
+                             shader_sources().text_fragment}) {
+    EXPECT_EQ(glsl_for_context(source, false), source);
+    const std::string es = glsl_for_context(source, true);
+    EXPECT_EQ(es.rfind("#version 300 es\nprecision highp float;\n", 0), 0u) << es;
+    EXPECT_EQ(es.find("#version 330"), std::string::npos) << es;
+    // Everything else is kept: the ES text is the desktop text less its version line.
+    EXPECT_EQ(es.size(), std::string(source).size() - std::string("#version 330 core\n").size() +
+                             std::string("#version 300 es\nprecision highp float;\nprecision "
+                                         "highp int;\n")
+                                 .size());
+  }
 }
 
 TEST(ImageCompare, ToleranceRule) {

@@ -9,28 +9,67 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <vector>
 
 #include "scene/initial_state.h"
+#include "scene_io/builtin_scenes.h"
 
 namespace invfree {
 namespace {
 
-TEST(SceneFiles, EveryBuiltinHasAnIdenticalAssetFile) {
-  for (const auto& entry : builtin_scenes()) {
-    const std::string path =
-        std::string(INVFREE_SOURCE_DIR) + "/assets/scenes/" + entry.name + ".toml";
-    const SceneLoad load = load_scene(path);
+// Every file of assets/scenes/ is embedded with its text, under its stem, and loads; the
+// embedded list holds nothing else.
+TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
+  std::map<std::string, std::string> embedded;
+  for (const auto& e : builtin_scenes()) embedded[std::string(e.name)] = std::string(e.text);
+  for (const auto& e : stress_scene_files()) embedded[std::string(e.name)] = std::string(e.text);
+  size_t files = 0;
+  for (const auto& f :
+       std::filesystem::directory_iterator(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes")) {
+    if (f.path().extension() != ".toml") continue;
+    ++files;
+    const std::string stem = f.path().stem().string();
+    std::ifstream in(f.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_TRUE(embedded.count(stem)) << stem << " is not embedded";
+    EXPECT_EQ(embedded[stem], text) << stem;
+    const SceneLoad load = load_scene(f.path().string());
     ASSERT_TRUE(load.scene) << load.error;
-    EXPECT_TRUE(*load.scene == entry.make()) << entry.name << " differs from " << path;
+    EXPECT_EQ(load.scene->name, stem) << "a scene's name is its file's stem";
+    EXPECT_EQ(stem.rfind("stress-", 0) == 0,
+              std::none_of(builtin_scenes().begin(), builtin_scenes().end(),
+                           [&](const EmbeddedScene& e) { return e.name == stem; }))
+        << stem << ": stress-*.toml are the stress scenes, the others the built-in ones";
   }
+  EXPECT_EQ(files, embedded.size());
+  EXPECT_EQ(builtin_scene_names(), "compress, drop");
+}
+
+// SceneDef's defaults are the reference demo (scene/scene.h): `compress` is the struct as
+// it comes, and `drop` differs from it in exactly what its file says.
+TEST(BuiltinScenes, CompressIsTheDefaultSceneAndDropItsVariant) {
+  const SceneLoad compress = load_builtin_scene("compress");
+  ASSERT_TRUE(compress.scene) << compress.error;
+  EXPECT_TRUE(*compress.scene == SceneDef{});
+  EXPECT_TRUE(*load_scene("compress").scene == SceneDef{});
+  const SceneLoad drop = load_builtin_scene("drop");
+  ASSERT_TRUE(drop.scene) << drop.error;
+  SceneDef expected;
+  expected.name = "drop";
+  expected.has_ceiling = false;
+  expected.friction = 0.0;
+  EXPECT_TRUE(*drop.scene == expected);
+  EXPECT_EQ(load_builtin_scene("stress-h0.1").error,
+            "stress-h0.1: not a built-in scene (compress, drop)");
 }
 
 TEST(SceneFiles, SerialisationRoundTrips) {
   for (const auto& entry : builtin_scenes()) {
-    SceneDef s = entry.make();
+    SceneDef s = *load_builtin_scene(entry.name).scene;
     s.jitter = 0.1;
     s.seed = 42;
     s.initial_velocity = Vec2(1.0, -20.0);
@@ -53,7 +92,7 @@ TEST(SceneFiles, DisabledTermsKeepTheirValuesAndRoundTrip) {
     ASSERT_TRUE(back.scene) << back.error;
     EXPECT_TRUE(*back.scene == *load.scene) << scene_to_toml(*load.scene);
   }
-  SceneDef odd = *find_builtin_scene("drop");
+  SceneDef odd = *load_builtin_scene("drop").scene;
   odd.name = "quote \" and \\ backslash";
   odd.seed = 99;  // kept even while jitter is 0
   odd.has_gravity = false;
@@ -91,8 +130,8 @@ TEST(SceneFiles, BadInputGivesOneLineErrorsNamingFileLineAndKey) {
   const BadCase cases[] = {
       {"[material]\nnu = 0.5\n", "bad.toml:2: material.nu: must be in [0, 0.5)"},
       {"[material]\nnu = -0.1\n", "material.nu: must be in [0, 0.5)"},
-      {"[material]\nE = 0\n", "bad.toml:2: material.E: must be > 0"},
-      {"[material]\nE = -5\n", "material.E: must be > 0"},
+      {"[material]\nE = 0\n", "bad.toml:2: material.E: must be a finite number > 0"},
+      {"[material]\nE = -5\n", "material.E: must be a finite number > 0"},
       {"[material]\nE = 1e5\nmu = 3\n", "give either E and nu or mu and lambda"},
       {"[material]\nmodel = \"neohookean\"\n", "material.model: unknown value \"neohookean\""},
       {"[time]\nh = 0\n", "bad.toml:2: time.h: must be a finite number > 0"},
@@ -136,7 +175,7 @@ TEST(SceneFiles, MissingFileAndUnknownName) {
 }
 
 TEST(Overrides, ApplyAndValidate) {
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   EXPECT_EQ(apply_override(s, "material.E=1e4"), "");
   double E, nu;
   young_poisson_from_lame(s.lame, &E, &nu);
@@ -160,11 +199,11 @@ TEST(Overrides, ApplyAndValidate) {
   EXPECT_NE(apply_override(s, "time.h").find("expected section.key=value"), std::string::npos);
   EXPECT_NE(apply_override(s, "ground.y=0").find("ground.y"), std::string::npos);
   EXPECT_TRUE(s == before) << "a rejected override must leave the scene unchanged";
-  SceneDef drop = *find_builtin_scene("drop");
+  SceneDef drop = *load_builtin_scene("drop").scene;
   EXPECT_NE(apply_override(drop, "ground.y=0").find("through the ground"), std::string::npos);
 }
 
-// ---- exhaustive bad input (issue 7) ---------------------------------------------------
+// ---- exhaustive bad input -------------------------------------------------------------
 // Every check below asserts the whole contract: the load fails, the error is one line,
 // it starts with "<file>:<line>: <section.key>: " and says what is wrong.
 
@@ -270,10 +309,24 @@ void expect_clean_error(const std::string& error, const std::string& expected,
   EXPECT_EQ(error.find('\n'), std::string::npos) << "not one line: " << error;
   EXPECT_EQ(error.find('\r'), std::string::npos) << "not one line: " << error;
 }
+// An error naming a "section.key" gives its line, and that line of the input holds the
+// key: errors blame the key the user wrote, never one the file does not set.
+void expect_blames_a_written_key(const std::string& error, const std::string& text) {
+  static const std::regex named(R"(^bad\.toml(:([0-9]+))?: [a-z]+\.([A-Za-z_]+): )");
+  std::smatch m;
+  if (!std::regex_search(error, m, named)) return;
+  ASSERT_TRUE(m[1].matched) << "names a key without its line: " << error;
+  std::istringstream in(text);
+  std::string line;
+  for (int k = std::stoi(m[2].str()); k > 0; --k) std::getline(in, line);
+  EXPECT_NE(line.find(m[3].str()), std::string::npos)
+      << "line " << m[2] << " (" << line << ") does not hold the key of: " << error;
+}
 void expect_bad_file(const std::string& text, const std::string& expected) {
   const SceneLoad load = parse_scene_toml(text, "bad.toml");
   EXPECT_FALSE(load.scene) << text;
   expect_clean_error(load.error, expected, text);
+  expect_blames_a_written_key(load.error, text);
 }
 void report_count(const char* what) {
   std::printf("bad inputs tried (%s): %d, all clean one-line errors\n", what, g_bad_inputs);
@@ -304,7 +357,7 @@ TEST(BadInput, WrongTypeForEveryKeyInAFile) {
 }
 
 TEST(BadInput, WrongTypeForEveryKeyInAnOverride) {
-  const SceneDef base = *find_builtin_scene("compress");
+  const SceneDef base = *load_builtin_scene("compress").scene;
   for (const auto& [key, kind] : key_kinds()) {
     for (const auto& w : wrong_values(kind)) {
       // Bare words become strings on the command line, so "--set time.h=fast" reads as
@@ -333,9 +386,9 @@ TEST(BadInput, OutOfRangeValuesInAFile) {
       {"[mesh]\njitter = 0.5\n", "bad.toml:2: mesh.jitter: must be in [0, 0.5)"},
       {"[mesh]\nseed = -1\n", "bad.toml:2: mesh.seed: must be >= 0"},
       {"[material]\nnu = 0.7\n", "bad.toml:2: material.nu: must be in [0, 0.5)"},
-      {"[material]\nmu = 0\n", "bad.toml:2: material.mu: must be > 0"},
-      {"[material]\nmu = -1\n", "bad.toml:2: material.mu: must be > 0"},
-      {"[material]\nlambda = -1\n", "bad.toml:2: material.lambda: must be >= 0"},
+      {"[material]\nmu = 0\n", "bad.toml:2: material.mu: must be a finite number > 0"},
+      {"[material]\nmu = -1\n", "bad.toml:2: material.mu: must be a finite number > 0"},
+      {"[material]\nlambda = -1\n", "bad.toml:2: material.lambda: must be a finite number >= 0"},
       {"[material]\nnu = 0.3\nlambda = 5\n",
        "bad.toml:2: material.nu: give either E and nu or mu and lambda, not both"},
       {"[material]\nmu = 5\nE = 1e5\n",
@@ -404,7 +457,7 @@ TEST(BadInput, MeshTooLargeForMemory) {
   if (check_mesh_fits_in_memory(kMaxSegments).empty())
     GTEST_SKIP() << "this machine could hold n_seg 4096";
   expect_bad_file("[mesh]\nn_seg = 4096\n", "bad.toml:2: mesh.n_seg: 4096 would need about");
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   expect_clean_error(apply_override(s, "mesh.n_seg=4096"), "mesh.n_seg: 4096 would need about",
                      "--set");
   EXPECT_GT(estimated_memory_bytes(256), 2.0 * 66049 * 1000) << "below the measured 2.8 kB/node";
@@ -462,7 +515,7 @@ TEST(BadInput, MalformedToml) {
 }
 
 // toml++ 3.3 reaches __builtin_unreachable() on some non-ASCII characters (found by
-// tests/fuzz; see tomlpp_hazard in core/scene_file.cpp): they must be refused cleanly
+// tests/fuzz; see core/scene_io/toml_guard.h): they must be refused cleanly
 // before toml++ sees them, while non-ASCII text inside strings and comments stays fine.
 TEST(BadInput, NonAsciiWhereTomlppMisbehaves) {
   expect_bad_file("mes\xcc\xa0se#",
@@ -473,7 +526,7 @@ TEST(BadInput, NonAsciiWhereTomlppMisbehaves) {
                   "bad.toml:2: malformed TOML: non-ASCII character after a backslash");
   expect_bad_file("name = \"a\\\xc2\xa7\"\n",
                   "bad.toml:1: malformed TOML: non-ASCII character after a backslash");
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   expect_clean_error(apply_override(s,
                                     "material.model=lin\xcc\xa0"
                                     "ear"),
@@ -571,13 +624,14 @@ TEST(BadInput, FilesThatAreNotScenes) {
 }
 
 TEST(BadInput, OverridesOutOfRangeAndMalformed) {
-  const SceneDef base = *find_builtin_scene("compress");
+  const SceneDef base = *load_builtin_scene("compress").scene;
+  const std::vector<std::string> keys = scene_keys();
   const std::string very_long(5000, 'a');  // outlives the table that points into it
   const BadCase cases[] = {
       {"material.nu=0.5", "--set material.nu=0.5: material.nu: must be in [0, 0.5)"},
-      {"material.E=0", "material.E: must be > 0"},
+      {"material.E=0", "material.E: must be a finite number > 0"},
       {"material.mu=5", "material.mu"},  // compress gives E and nu: mu alone keeps lambda, fine
-      {"material.lambda=-2", "material.lambda: must be >= 0"},
+      {"material.lambda=-2", "material.lambda: must be a finite number >= 0"},
       {"mesh.n_seg=0", "mesh.n_seg: must be between 1 and 4096"},
       {"mesh.side=-1", "mesh.side: must be a finite number > 0"},
       {"time.h=-1", "time.h: must be a finite number > 0"},
@@ -587,8 +641,8 @@ TEST(BadInput, OverridesOutOfRangeAndMalformed) {
       {"barrier.kappa=-1", "barrier.kappa: must be a finite number > 0"},
       {"ceiling.y=-1", "ceiling.y: must be above ground.y"},
       {"ceiling.y=0.4", "ceiling.y: the square starts on or through the ceiling"},
-      {"ground.y=-0.2",
-       "ceiling.stop: must be above ground.y"},  // compress stops its ceiling at -0.7
+      // compress stops its ceiling at -0.7: the error names the key set, and the relation.
+      {"ground.y=-0.2", "--set ground.y=-0.2: ground.y: ceiling.stop must be above ground.y"},
       {"ceiling.stop=-2", "ceiling.stop: must be above ground.y"},
       {"mesh.jitter=0.7", "mesh.jitter: must be in [0, 0.5)"},
       {"time.h", "--set time.h: expected section.key=value"},
@@ -614,6 +668,13 @@ TEST(BadInput, OverridesOutOfRangeAndMalformed) {
       continue;
     }
     expect_clean_error(error, c.expected, c.text);
+    const std::string text = c.text;
+    const std::string key = text.substr(0, text.find('='));
+    if (text.find('=') != std::string::npos &&
+        std::find(keys.begin(), keys.end(), key) != keys.end()) {
+      EXPECT_NE(error.find(": " + key + ": "), std::string::npos)
+          << "blames another key: " << error;
+    }
     EXPECT_LT(error.size(), 400u) << "errors quote at most a bounded part of the input";
     EXPECT_TRUE(s == base) << c.text;
   }
@@ -622,6 +683,89 @@ TEST(BadInput, OverridesOutOfRangeAndMalformed) {
   SceneDef lame = *parse_scene_toml("[material]\nmu = 10\nlambda = 20\n", "l.toml").scene;
   EXPECT_EQ(apply_override(lame, "material.E=30"), "");
   report_count("--set");
+}
+
+// toml++ recurses once per part of a dotted key or table header and overflowed the stack
+// (SIGSEGV) at about 40,000 parts: more than two parts are refused before toml++ sees them.
+// A dot inside a quoted key, a string or a comment is no part.
+TEST(BadInput, DeepDottedKeys) {
+  std::string chain;
+  for (int k = 0; k < 50000; ++k) chain += "a.";
+  const std::string deep = "malformed TOML: a dotted key with more than two parts";
+  expect_bad_file(chain + "b = 1\n", "bad.toml:1: " + deep);
+  expect_bad_file("[" + chain + "b]\n", "bad.toml:1: " + deep);
+  expect_bad_file("[[" + chain + "b]]\n", "bad.toml:1: " + deep);
+  expect_bad_file("[mesh]\nside = { " + chain + "b = 1 }\n", "bad.toml:2: " + deep);
+  expect_bad_file("name = \"x\"\n[mesh]\nside = 1\n[a.b.c]\n", "bad.toml:4: " + deep);
+  expect_bad_file("a . \"b\" . 'c' = 1\n", "bad.toml:1: " + deep);
+  expect_bad_file("[mesh]\nside = 1.2.3\n", "bad.toml:2: malformed TOML");
+  expect_bad_file("\"a.b.c.d\" = 1\n", "bad.toml:1: a.b.c.d: unknown top-level key");
+  expect_bad_file("[mesh.side.x]\n", "bad.toml:1: " + deep);
+  expect_bad_file("[mesh.sub]\nx = 1\n", "bad.toml:1: mesh.sub: unknown key");
+  const char* fine[] = {
+      "name = \"a.b.c.d.e\" # f.g.h.i\n",
+      "name = 'a.b.c.d'\n",
+      "name = \"\"\"a.b.\\\nc.d\"\"\"\n",
+      "# [a.b.c.d]\nmesh.side = 2.5\n",
+      "'mesh'.\"n_seg\" = 3\nmaterial . E = 1e5\n",
+      "[mesh]\nside = 1.5 # x.y.z\n",
+      "[gravity]\ng = [0.5, -9.81]\n",
+  };
+  for (const char* text : fine) {
+    const SceneLoad load = parse_scene_toml(text, "fine.toml");
+    EXPECT_TRUE(load.scene) << text << "\n" << load.error;
+  }
+  EXPECT_EQ(parse_scene_toml("# [a.b.c.d]\nmesh.side = 2.5\n", "f.toml").scene->side, 2.5);
+  SceneDef s = *load_builtin_scene("compress").scene;
+  expect_clean_error(apply_override(s, "mesh.side={ " + chain + "b = 1 }"),
+                     "mesh.side: expected a number, got a string", "--set");
+  expect_clean_error(apply_override(s, "mesh." + chain + "b=1"), "unknown key", "--set");
+  report_count("deep dotted keys");
+}
+
+// Errors name the key the user wrote, with its line: a relation or a derived value names
+// the key that was set, not the one whose check failed.
+TEST(BadInput, ErrorsBlameTheKeyTheUserWrote) {
+  const BadCase files[] = {
+      {"[mesh]\nside = 1e-200\n",
+       "bad.toml:2: mesh.side: side / n_seg gives triangles whose area underflows in double "
+       "precision"},
+      {"[mesh]\nn_seg = 8\nside = 1e-155\n", "bad.toml:3: mesh.side: side / n_seg gives"},
+      {"[mesh]\nside = 1e200\n",
+       "bad.toml:2: mesh.side: side / n_seg gives triangles whose area "
+       "overflows in double precision"},
+      {"[material]\nmodel = \"linear\"\n\n[mesh]\nside = 1e-200\n",
+       "bad.toml:5: mesh.side: side / n_seg gives"},  // any model
+      {"[material]\nnu = 0.3\nE = 5e-324\n",
+       "bad.toml:3: material.E: too small (mu = E / (2 (1 + nu)) underflows to 0)"},
+      {"[mesh]\nside = 3\n[ground]\n",
+       "bad.toml:2: mesh.side: the square starts on or through the ground"},
+      {"[ground]\ny = -0.2\n[ceiling]\n",
+       "bad.toml:2: ground.y: ceiling.stop must be above ground.y"},
+      {"[ground]\ny = 1\n[ceiling]\n", "bad.toml:2: ground.y: ceiling.y must be above ground.y"},
+  };
+  for (const auto& c : files) expect_bad_file(c.text, c.expected);
+  const SceneDef compress = *load_builtin_scene("compress").scene;
+  const BadCase overrides[] = {
+      {"mesh.side=1e-200", "--set mesh.side=1e-200: mesh.side: side / n_seg gives triangles"},
+      {"material.E=5e-324", "--set material.E=5e-324: material.E: too small"},
+      {"mesh.side=3", "--set mesh.side=3: mesh.side: the square starts on or through the ground"},
+      {"ground.y=1", "--set ground.y=1: ground.y: ceiling.y must be above ground.y"},
+  };
+  for (const auto& c : overrides) {
+    SceneDef s = compress;
+    expect_clean_error(apply_override(s, c.text), c.expected, c.text);
+  }
+  // A start only an invertible model can take, then the lecture's model.
+  SceneDef jittered =
+      *parse_scene_toml("[mesh]\nn_seg = 16\njitter = 0.49\n[material]\nmodel = \"arap\"\n",
+                        "j.toml")
+           .scene;
+  expect_clean_error(apply_override(jittered, "material.model=neo-hookean"),
+                     "--set material.model=neo-hookean: material.model: the initial mesh has an "
+                     "inverted triangle, which the neo-hookean model cannot start from",
+                     "--set");
+  report_count("blame");
 }
 
 }  // namespace

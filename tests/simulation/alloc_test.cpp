@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "linalg/parallel.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 
 extern "C" {
@@ -142,7 +143,7 @@ TEST(NoAllocation, CountingAllocatorSeesAllocations) {
 TEST(NoAllocation, ImplicitStepsWithEveryLinearSolver) {
   for (LinearSolverKind kind : {LinearSolverKind::Auto, LinearSolverKind::Ldlt,
                                 LinearSolverKind::Cholmod, LinearSolverKind::Pcg}) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.n_seg = 12;
     s.linear_solver = kind;
     const Counts c = allocations_during_run(s, 3, 297);
@@ -159,7 +160,7 @@ TEST(NoAllocation, ImplicitStepsWithEveryLinearSolver) {
 // (core/linear_solver.cpp): what remains there are the runtimes' records in the steps
 // that refactorise, and a step that reuses the factor allocates nothing at all.
 TEST(NoAllocation, LargeMeshWithParallelAssemblyAndCholmod) {
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   s.n_seg = 82;  // 13,778 unknowns: above the METIS and the 16k-stack thresholds' neighbourhood
   {
     SceneDef direct = s;
@@ -179,7 +180,7 @@ TEST(NoAllocation, LargeMeshWithParallelAssemblyAndCholmod) {
 }
 
 TEST(NoAllocation, OtherScenesAndTheExplicitIntegrator) {
-  SceneDef drop = *find_builtin_scene("drop");
+  SceneDef drop = *load_builtin_scene("drop").scene;
   drop.n_seg = 10;
   const Counts d = allocations_during_run(drop, 3, 200);
   EXPECT_EQ(d.ours + d.runtime, 0) << "drop";

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 
 namespace invfree {
 namespace {
@@ -38,7 +39,7 @@ double max_speed(const Simulation& sim) {
 }
 
 TEST(Compress, KeepsEveryInvariantAndEndsAtRest) {
-  Simulation sim = make_simulation(*find_builtin_scene("compress"));
+  Simulation sim = make_simulation(*load_builtin_scene("compress").scene);
   double min_height = 1.0;
   for (int k = 0; k < 600; ++k) {
     const StepReport r = step(sim);
@@ -63,7 +64,7 @@ TEST(Compress, KeepsEveryInvariantAndEndsAtRest) {
 }
 
 TEST(Drop, LandsAndComesToRest) {
-  Simulation sim = make_simulation(*find_builtin_scene("drop"));
+  Simulation sim = make_simulation(*load_builtin_scene("drop").scene);
   for (int k = 0; k < 300; ++k) {
     ASSERT_EQ(step(sim).status, StepStatus::Ok);
     expect_invariants(sim, sim.step_count);
@@ -123,7 +124,7 @@ TEST(PlateCompression, ReachesAnalyticPlaneStrainEquilibrium) {
 }
 
 TEST(Failures, NewtonCapIsReportedAndStateKept) {
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   s.max_newton = 1;
   s.tol = 1e-14;
   Simulation sim = make_simulation(s);
@@ -137,7 +138,7 @@ TEST(Failures, NewtonCapIsReportedAndStateKept) {
 
 TEST(Determinism, RepeatedRunsAreBitIdentical) {
   auto run = [] {
-    Simulation sim = make_simulation(*find_builtin_scene("compress"));
+    Simulation sim = make_simulation(*load_builtin_scene("compress").scene);
     for (int k = 0; k < 250; ++k) step(sim);
     return sim.x;
   };
@@ -146,7 +147,7 @@ TEST(Determinism, RepeatedRunsAreBitIdentical) {
 }
 
 TEST(UpdateScene, MaterialChangeMidRunKeepsInvariants) {
-  Simulation sim = make_simulation(*find_builtin_scene("compress"));
+  Simulation sim = make_simulation(*load_builtin_scene("compress").scene);
   for (int k = 0; k < 200; ++k) step(sim);
   SceneDef soft = sim.scene;
   soft.lame = lame_from_young_poisson(1e4, 0.45);
@@ -160,7 +161,7 @@ TEST(UpdateScene, MaterialChangeMidRunKeepsInvariants) {
 
 TEST(InvertibleModels, StepThroughCompressWithoutFailing) {
   for (Model m : {Model::Linear, Model::Arap, Model::StableNeoHookean}) {
-    SceneDef s = *find_builtin_scene("compress");
+    SceneDef s = *load_builtin_scene("compress").scene;
     s.model = m;
     Simulation sim = make_simulation(s);
     for (int k = 0; k < 150; ++k)
@@ -169,7 +170,7 @@ TEST(InvertibleModels, StepThroughCompressWithoutFailing) {
 }
 
 TEST(SymplecticEuler, DropsUnderGravityLikeFreeFall) {
-  SceneDef s = *find_builtin_scene("drop");
+  SceneDef s = *load_builtin_scene("drop").scene;
   s.integrator = Integrator::SymplecticEuler;
   s.h = 1e-4;
   Simulation sim = make_simulation(s);

@@ -6,8 +6,8 @@
 
 #include <random>
 
+#include "potential/incremental_potential.h"
 #include "scene/mesh.h"
-#include "solver/line_search_filter.h"
 
 namespace invfree {
 namespace {
@@ -27,16 +27,16 @@ struct Fixture {
     for (int i = 0; i < mesh.node_count(); ++i) rest.segment<2>(2 * i) = mesh.rest[i];
     p.mesh = &mesh;
     p.x_start = rest;
-    p.friction_on = true;
-    p.friction_eps_u = 1e-5;
-    p.friction_weight.assign(mesh.node_count(), 0.0);
+    p.friction.on = true;
+    p.friction.eps_u = 1e-5;
+    p.friction.weight.assign(mesh.node_count(), 0.0);
   }
 };
 
 TEST(FrictionCrossing, StopsSlidingNodesThatTheStepCarriesAcrossZeroSlip) {
   Fixture f(2);  // nodes 3i + j; the bottom row is 0, 3, 6
-  for (int i : {0, 3, 6}) f.p.friction_weight[i] = 1.0;
-  const double eps = f.p.friction_eps_u;
+  for (int i : {0, 3, 6}) f.p.friction.weight[i] = 1.0;
+  const double eps = f.p.friction.eps_u;
   VecX z = f.rest, trial = f.rest;
   auto slip = [&](int node, double u0, double u1) {
     z[2 * node] += u0;
@@ -58,7 +58,7 @@ TEST(FrictionCrossing, StopsSlidingNodesThatTheStepCarriesAcrossZeroSlip) {
     }
   }
   VecX again = straight;  // friction off: nothing to stop
-  f.p.friction_on = false;
+  f.p.friction.on = false;
   EXPECT_EQ(stop_friction_crossings(f.p, z, again, scratch), 0);
   EXPECT_EQ(again, straight);
 }
@@ -68,7 +68,7 @@ TEST(FrictionCrossing, StopsSlidingNodesThatTheStepCarriesAcrossZeroSlip) {
 // every node is either where the step put it or, if it crossed, at zero slip.
 TEST(FrictionCrossing, NeverSqueezesATriangleBelowTheFilter) {
   Fixture f(4);
-  std::fill(f.p.friction_weight.begin(), f.p.friction_weight.end(), 1.0);
+  std::fill(f.p.friction.weight.begin(), f.p.friction.weight.end(), 1.0);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   FrictionCrossingScratch scratch;
@@ -87,7 +87,7 @@ TEST(FrictionCrossing, NeverSqueezesATriangleBelowTheFilter) {
     int crossings = 0;
     for (int i = 0; i < f.mesh.node_count(); ++i) {
       const double u0 = z[2 * i] - f.p.x_start[2 * i], u1 = straight[2 * i] - f.p.x_start[2 * i];
-      if (u0 * u1 < 0.0 && std::abs(u1) >= f.p.friction_eps_u) ++crossings;
+      if (u0 * u1 < 0.0 && std::abs(u1) >= f.p.friction.eps_u) ++crossings;
     }
     const int count = stop_friction_crossings(f.p, z, trial, scratch);
     ASSERT_LE(count, crossings);

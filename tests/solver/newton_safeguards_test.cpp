@@ -11,13 +11,15 @@
 
 #include "potential/incremental_potential.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
 
 SceneDef compress(int n_seg, bool safeguards, bool crossing_stop) {
-  SceneDef s = *find_builtin_scene("compress");
+  SceneDef s = *load_builtin_scene("compress").scene;
   s.n_seg = n_seg;
   s.step_expansion = safeguards;
   s.friction_crossing_stop = crossing_stop;
@@ -30,10 +32,10 @@ SceneDef compress(int n_seg, bool safeguards) {
 // |p|_inf / h for p = -H^-1 g at the state the last step returned (its own problem:
 // x_tilde, friction weights and ceiling state of that step).
 double exact_residual(const Simulation& sim) {
-  const StepProblem& p = sim.problem;
-  SparseHessian hess = build_sparse_hessian(sim.mesh, p.ceiling_on);
+  const StepProblem& p = sim.workspace->problem;
+  SparseHessian hess = build_sparse_hessian(sim.mesh, p.ceiling.on);
   VecX g;
-  ip_gradient_hessian(p, sim.z, g, hess);
+  ip_gradient_hessian(p, sim.workspace->z, g, hess);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(hess.matrix);
   EXPECT_EQ(ldlt.info(), Eigen::Success);
   const VecX dir = ldlt.solve(-g);
@@ -108,7 +110,7 @@ namespace {
 
 // The ceiling's penalty starts each step strong enough to hold the ceiling against the
 // push the body gave it in the last step (core/simulation.cpp): once the ceiling
-// presses on the body, Newton no longer re-doubles k from the demo's small start.
+// presses on the body, Newton does not re-double k from a small start as the demo does.
 int doublings_after_contact(SceneDef scene, int steps) {
   Simulation sim = make_simulation(scene);
   int after = 0;

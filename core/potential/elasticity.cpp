@@ -1,6 +1,5 @@
-#include "solver/line_search_filter.h"
+#include "potential/elasticity.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -12,6 +11,26 @@ double cross(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 }  // namespace
+
+double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x) {
+  return visit_model(model, [&](auto m) {
+    return elastic_energy_range<decltype(m)>(mesh, lame, x.data(), 0, mesh.triangle_count());
+  });
+}
+
+void add_elastic_gradient(const Mesh& mesh, Model model, const Lame& lame, const VecX& x,
+                          double scale, VecX& g) {
+  visit_model(model, [&](auto m) {
+    using M = decltype(m);
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      const Mat46 dFdx = deformation_gradient_jacobian(mesh.rest_shape_inverse[t]);
+      const Vec6 gt = TriangleElasticity<M>::gradient(
+          triangle_deformation_gradient(mesh, x.data(), t), dFdx, scale * mesh.rest_area[t], lame);
+      const auto& tri = mesh.triangles[t];
+      for (int a = 0; a < 3; ++a) g.segment<2>(2 * tri[a]) += gt.segment<2>(2 * a);
+    }
+  });
+}
 
 double smallest_positive_root(double a, double b, double c) {
   if (a == 0.0) {
@@ -50,21 +69,6 @@ double inversion_free_step(const Mesh& mesh, const VecX& x, const VecX& p) {
 double signed_area(const VecX& x, const std::array<int, 3>& t) {
   return cross(x.segment<2>(2 * t[1]) - x.segment<2>(2 * t[0]),
                x.segment<2>(2 * t[2]) - x.segment<2>(2 * t[0]));
-}
-
-double plane_step(const PlaneFilter& planes, int node_count, const VecX& x, const VecX& p) {
-  double alpha = 1.0;
-  const int c = 2 * node_count;
-  for (int i = 0; i < node_count; ++i) {
-    const int y = 2 * i + 1;
-    if (planes.ground_on && p[y] < 0.0)
-      alpha = std::min(alpha, 0.9 * (x[y] - planes.ground_y) / -p[y]);
-    if (planes.ceiling_on) {
-      const double closing = p[c] - p[y];  // rate of change of the gap c - y_i
-      if (closing < 0.0) alpha = std::min(alpha, 0.9 * (x[c] - x[y]) / -closing);
-    }
-  }
-  return alpha;
 }
 
 }  // namespace invfree

@@ -1,9 +1,10 @@
-#include "solver/line_search_filter.h"
-
+// The line-search filters of the terms that bound a step: the inversion-free filter
+// (potential/elasticity.h) and the plane filter (potential/plane_barrier.h).
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "potential/incremental_potential.h"
 #include "scene/mesh.h"
 
 namespace invfree {
@@ -62,7 +63,11 @@ TEST(PlaneStep, NeverCrossesOverRandomDirections) {
   const int n = 40;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
-  PlaneFilter planes{true, -1.0, true};
+  GroundBarrier ground;
+  ground.on = true;
+  ground.y0 = -1.0;
+  CeilingBarrier ceiling;
+  ceiling.on = true;
   for (int trial = 0; trial < 300; ++trial) {
     VecX x(2 * n + 1), p(2 * n + 1);
     x[2 * n] = 1.0;
@@ -71,7 +76,7 @@ TEST(PlaneStep, NeverCrossesOverRandomDirections) {
       x[2 * i + 1] = 0.999 * u(rng);
     }
     for (int k = 0; k < p.size(); ++k) p[k] = 3.0 * u(rng);
-    const double alpha = plane_step(planes, n, x, p);
+    const double alpha = plane_step(ground, ceiling, n, x, p);
     ASSERT_GT(alpha, 0.0);
     const VecX y = x + alpha * p;
     for (int i = 0; i < n; ++i) {

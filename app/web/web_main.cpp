@@ -1,0 +1,249 @@
+// The web page's program (docs/web.md): `invfree live` (app/live/live_app.h) in the page's
+// canvas, the built-in scenes in its picker. The browser calls page_frame once per
+// animation frame (emscripten_set_main_loop); each call is one LiveApp::frame, the same
+// body the desktop's loop runs.
+//
+// Inputs: the page's URL query: paused=1 starts paused (the tests' first frame),
+// n_seg=N starts with that mesh (through the controller's checks: a value they refuse
+// leaves the scene's mesh, and the panel's note says why), scene=NAME picks a built-in
+// scene.
+// Touch (shell.html): a finger is the left mouse button; a short tap on the picture plays or
+// pauses.
+// Outputs: the canvas, screenshots as downloads, and `window.invfree` after every frame (frames,
+// steps, min det F, mu, lambda, n_seg, frames/s, the panel's widget rectangles, note, banner), read
+// by the tests in a headless browser (tests/web) and by anyone curious in the browser's console.
+#include <GLFW/glfw3.h>
+#include <emscripten.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "app/live/live_app.h"
+#include "scene_io/builtin_scenes.h"
+#include "scene/scene.h"
+
+namespace {
+
+using invfree::live::LiveApp;
+
+// The n_seg slider's maximum in the page (docs/web.md, "Speed"): the largest mesh whose
+// step, timed in the page in headless Chromium on the project's 2-core machine while it was
+// loaded (load average 8-15), stays under half of a 30 frames/s frame, leaving the other
+// half for the page's drawing calls: 11.4 and 14.7 ms at n_seg 40, 14.3 to 19.0 ms at 48
+// (tests/web/measure_fps.py). Larger meshes can still be asked for in the URL (?n_seg=N).
+constexpr int kWebMaxSegments = 40;
+
+struct Page {
+  std::unique_ptr<LiveApp> app;
+  bool failed = false;
+  size_t messages_seen = 0;
+  bool tap = false;  // a short tap on the canvas since the last frame (shell.html)
+  // frames/s over the last second, for window.invfree
+  double fps_start_ms = 0.0, fps = 0.0;
+  long fps_frames = 0;
+};
+
+int query_int(const char* key, int fallback) {
+  // clang-format off
+  return EM_ASM_INT({
+    const v = new URLSearchParams(window.location.search).get(UTF8ToString($0));
+    if (v === null || v === "" || !/^-?[0-9]+$/.test(v)) return $1;
+    return parseInt(v, 10);
+  }, key, fallback);
+  // clang-format on
+}
+
+std::string query_string(const char* key) {
+  char buffer[64] = {};
+  // clang-format off
+  EM_ASM({
+    const v = new URLSearchParams(window.location.search).get(UTF8ToString($0)) || "";
+    stringToUTF8(v, $1, $2);
+  }, key, buffer, static_cast<int>(sizeof buffer));
+  // clang-format on
+  return buffer;
+}
+
+int window_width() {
+  return EM_ASM_INT({ return window.innerWidth; });
+}
+int window_height() {
+  return EM_ASM_INT({ return window.innerHeight; });
+}
+
+// True when WebGL is drawn by a CPU rasterizer (headless Chromium's SwiftShader, Mesa's
+// llvmpipe): multisampling would then cost a large part of each frame, as on the desktop
+// (LiveApp::create). The browser masks GL_RENDERER; the debug extension names it.
+bool software_webgl() {
+  // clang-format off
+  return EM_ASM_INT({
+    const gl = document.createElement("canvas").getContext("webgl2");
+    const info = gl && gl.getExtension("WEBGL_debug_renderer_info");
+    const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : "";
+    const lose = gl && gl.getExtension("WEBGL_lose_context");
+    if (lose) lose.loseContext();  // this probe's context is not needed any more
+    return /SwiftShader|llvmpipe|softpipe/i.test(name) ? 1 : 0;
+  });
+  // clang-format on
+}
+
+void show_error(const std::string& message) {
+  std::fprintf(stderr, "invfree: %s\n", message.c_str());
+  // clang-format off
+  EM_ASM({
+    const status = document.getElementById("status");
+    if (status) { status.textContent = UTF8ToString($0); status.style.display = "block"; }
+  }, message.c_str());
+  // clang-format on
+}
+
+std::unique_ptr<LiveApp> open_app() {
+  invfree::live::LiveOptions o;
+  for (const auto& e : invfree::builtin_scenes()) {
+    const invfree::SceneLoad loaded = invfree::load_builtin_scene(e.name);
+    if (loaded.scene) o.scenes.push_back({std::string(e.name), *loaded.scene});
+  }
+  const std::string scene = query_string("scene");
+  for (size_t i = 0; i < o.scenes.size(); ++i)
+    if (o.scenes[i].label == scene) o.selected = static_cast<int>(i);
+  o.paused = query_int("paused", 0) != 0;
+  o.max_segments = kWebMaxSegments;
+  if (software_webgl()) o.samples = 1;
+  o.width = std::max(320, window_width());
+  o.height = std::max(240, window_height());
+  std::string error;
+  auto app = LiveApp::create(o, &error);
+  if (!app) {
+    show_error(error);
+    return nullptr;
+  }
+  if (const int n_seg = query_int("n_seg", 0); n_seg != 0) {
+    invfree::live::LiveController& lc = app->controller();
+    invfree::SceneDef next = lc.settings();
+    next.n_seg = n_seg;
+    if (!lc.apply(next)) std::printf("invfree: n_seg=%d: %s\n", n_seg, lc.note.c_str());
+  }
+  return app;
+}
+
+// The canvas fills the browser window: follow its size (GLFW's window is the canvas).
+void follow_browser_window() {
+  GLFWwindow* window = glfwGetCurrentContext();
+  if (!window) return;
+  int w = 0, h = 0;
+  glfwGetWindowSize(window, &w, &h);
+  const int want_w = std::max(320, window_width()), want_h = std::max(240, window_height());
+  if (w != want_w || h != want_h) glfwSetWindowSize(window, want_w, want_h);
+}
+
+void publish_state(Page& p) {
+  const invfree::live::LiveController& lc = p.app->controller();
+  const double now = emscripten_get_now();
+  ++p.fps_frames;
+  if (now - p.fps_start_ms >= 1000.0) {
+    p.fps = p.fps_start_ms > 0.0 ? 1000.0 * p.fps_frames / (now - p.fps_start_ms) : 0.0;
+    p.fps_start_ms = now;
+    p.fps_frames = 0;
+  }
+  std::string widgets;
+  for (const auto& [name, r] : p.app->widget_rects()) {
+    char item[160];
+    std::snprintf(item, sizeof item, "%s\"%s\":[%.1f,%.1f,%.1f,%.1f]", widgets.empty() ? "" : ",",
+                  name.c_str(), r.x0, r.y0, r.x1, r.y1);
+    widgets += item;
+  }
+  const invfree::SceneDef& s = lc.settings();
+  const long steps = lc.steps_total();
+  char head[512];
+  std::snprintf(head, sizeof head,
+                "{\"frames\":%ld,\"steps\":%ld,\"min_det_f\":%.17g,\"mu\":%.17g,\"lambda\":%.17g,"
+                "\"n_seg\":%d,\"playing\":%s,\"fps\":%.2f,\"step_ms\":%.3f,\"scene\":\"%s\",",
+                p.app->frames_drawn(), steps, lc.stats().min_det_f, s.lame.mu, s.lame.lambda,
+                s.n_seg, lc.playing() ? "true" : "false", p.fps,
+                steps ? lc.step_ms_total() / steps : 0.0, s.name.c_str());
+  const std::string json = head + std::string("\"widgets\":{") + widgets + "}}";
+  // note and banner are free text: handed over as strings, not spliced into the JSON.
+  // clang-format off
+  EM_ASM({
+    const state = JSON.parse(UTF8ToString($0));
+    state.note = UTF8ToString($1);
+    state.banner = UTF8ToString($2);
+    window.invfree = state;
+  }, json.c_str(), lc.note.c_str(), lc.banner.c_str());
+  // clang-format on
+}
+
+// The panel's Screenshot button (and Ctrl+P) writes a PNG into the page's in-memory file
+// system and says "screenshot: PATH"; the browser then downloads that file.
+void download_screenshots(Page& p) {
+  const auto& messages = p.app->messages();
+  const std::string prefix = "screenshot: ";
+  for (; p.messages_seen < messages.size(); ++p.messages_seen) {
+    const std::string& m = messages[p.messages_seen];
+    if (m.compare(0, prefix.size(), prefix) != 0) continue;
+    // clang-format off
+    EM_ASM({
+      const path = UTF8ToString($0);
+      const bytes = FS.readFile(path);
+      FS.unlink(path);
+      const link = document.createElement("a");
+      link.href = URL.createObjectURL(new Blob([bytes], {type: "image/png"}));
+      link.download = path.split("/").pop();
+      document.body.appendChild(link);
+      link.click();
+      link.remove();
+      setTimeout(() => URL.revokeObjectURL(link.href), 10000);
+    }, m.c_str() + prefix.size());
+    // clang-format on
+  }
+}
+
+// One animation frame. The app is opened in the first one, once the main loop exists
+// (GLFW's swap interval sets the main loop's timing, which needs a main loop).
+void page_frame(void* arg) {
+  Page& p = *static_cast<Page*>(arg);
+  if (p.failed) return;
+  if (!p.app) {
+    p.app = open_app();
+    if (!p.app) {
+      p.failed = true;
+      emscripten_cancel_main_loop();
+      return;
+    }
+    EM_ASM({
+      const status = document.getElementById("status");
+      if (status) status.style.display = "none";
+    });
+  }
+  follow_browser_window();
+  // A tap on the picture plays or pauses; on the panel it is only the click it also was.
+  if (p.tap && !ImGui::GetIO().WantCaptureMouse) {
+    invfree::live::LiveController& lc = p.app->controller();
+    lc.set_playing(!lc.playing());
+  }
+  p.tap = false;
+  p.app->frame();
+  download_screenshots(p);
+  publish_state(p);
+}
+
+Page g_page;
+
+}  // namespace
+
+// Called by the page's touch handling (shell.html) after a short tap.
+extern "C" EMSCRIPTEN_KEEPALIVE void invfree_tap() {
+  g_page.tap = true;
+}
+
+int main() {
+  // The page has no threads (no -pthread: that would need cross-origin isolation headers
+  // from the server); the core's thread pool then runs everything on the calling thread.
+  setenv("INVFREE_THREADS", "1", 1);
+  emscripten_set_main_loop_arg(page_frame, &g_page, 0, 1);
+  return 0;
+}

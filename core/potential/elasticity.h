@@ -1,0 +1,86 @@
+// Elasticity: sum_t area_t Psi(F_t) over the mesh's triangles, for the scene's material
+// model (core/material/: Psi, P = dPsi/dF and the projected dP/dF per model, the
+// per-triangle chain rule in triangle_elasticity.h), and its largest feasible step, the
+// inversion-free filter of lecture 9 ("Inversion-Free Line Search Filtering").
+// The sum over triangles runs in blocks and colours (incremental_potential.cpp); this
+// file gives the per-range pieces for one model type M, and model-dispatched wrappers.
+#pragma once
+
+#include <algorithm>
+#include <array>
+
+#include "linalg/sparse_hessian.h"
+#include "material/models.h"
+#include "material/triangle_elasticity.h"
+#include "scene/mesh.h"
+
+namespace invfree {
+
+struct Elasticity {
+  Model model = Model::NeoHookean;
+  Lame lame;
+  HessianProjection projection = HessianProjection::Diagonal;
+  bool inversion_filter = true;  // bound steps so that no triangle inverts (when det F > 0 is
+                                 // required by the model)
+  bool filters_inversions() const { return inversion_filter && !model_allows_inversion(model); }
+};
+
+inline Mat2 triangle_deformation_gradient(const Mesh& mesh, const double* x, int t) {
+  const auto& tri = mesh.triangles[t];
+  auto node = [x](int i) { return Vec2(x[2 * i], x[2 * i + 1]); };
+  return deformation_gradient(node(tri[0]), node(tri[1]), node(tri[2]), mesh.rest_shape_inverse[t]);
+}
+
+// sum of area_t Psi(F_t) over triangles [begin, end).
+template <class M>
+double elastic_energy_range(const Mesh& mesh, const Lame& lame, const double* x, int begin,
+                            int end) {
+  double e = 0.0;
+  for (int t = begin; t < end; ++t)
+    e += mesh.rest_area[t] * M::energy_density(triangle_deformation_gradient(mesh, x, t), lame);
+  return e;
+}
+
+// Adds scale * the gradient and projected Hessian of triangles [begin, end) into g and
+// the fixed pattern of `hess` (its per-triangle slots).
+template <class M>
+void add_elastic_derivatives_range(const Mesh& mesh, const Elasticity& e, const double* x,
+                                   int begin, int end, double scale, double* g,
+                                   SparseHessian& hess) {
+  double* values = hess.values();
+  Vec6 gt;
+  Mat6 ht;
+  for (int t = begin; t < end; ++t) {
+    const auto& tri = mesh.triangles[t];
+    TriangleElasticity<M>::gradient_hessian(triangle_deformation_gradient(mesh, x, t),
+                                            mesh.rest_shape_inverse[t], scale * mesh.rest_area[t],
+                                            e.lame, e.projection, gt, ht);
+    for (int a = 0; a < 3; ++a) {
+      g[2 * tri[a]] += gt[2 * a];
+      g[2 * tri[a] + 1] += gt[2 * a + 1];
+    }
+    const int* slots = &hess.triangle_slots[36 * static_cast<size_t>(t)];
+    const double* local = ht.data();  // column-major; ht is symmetric, so row-major alike
+    for (int k = 0; k < 36; ++k) values[slots[k]] += local[k];
+  }
+}
+
+// The whole mesh, serially (explicit integration, energy bookkeeping, tests).
+double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x);
+// Adds scale * the elastic gradient to `gradient` (2N entries); no Hessian.
+void add_elastic_gradient(const Mesh& mesh, Model model, const Lame& lame, const VecX& x,
+                          double scale, VecX& gradient);
+
+// The inversion-free filter: the largest alpha in (0, 1] that keeps every triangle's
+// signed area above kMinAreaFraction of its current value along direction p (the
+// quadratic a alpha^2 + b alpha + 0.9 = 0 in alpha, normalised by the current area).
+constexpr double kMinAreaFraction = 0.1;
+double inversion_free_step(const Mesh& mesh, const VecX& x, const VecX& p);
+double signed_area(const VecX& x, const std::array<int, 3>& triangle);
+
+// Smallest strictly positive real root of a t^2 + b t + c = 0, or +infinity when there is
+// none. Uses the cancellation-free form of the quadratic formula and treats a == 0 and
+// b == 0 exactly (the coefficients are already dimensionless, so no tolerance is needed).
+double smallest_positive_root(double a, double b, double c);
+
+}  // namespace invfree

@@ -1,0 +1,63 @@
+// Lagged IPC friction on the ground (IPC eq. 14-16; the lecture demo's FrictionEnergy):
+// tangential slip u = x_i - x_i^n along the plane, normal force lambda_i = -b'(d_i^n) frozen
+// at the step's start, and the C1 mollifier f0 with eps_u = eps_v h:
+//   f0(y) = y (y >= eps_u),  -y^3/(3 eps_u^2) + y^2/eps_u + eps_u/3 (y < eps_u)
+//   D(u) = mu_f lambda f0(|u|),  D'(u) = mu_f lambda f1(|u|) sign(u),
+//   D''(u) = mu_f lambda (2/eps_u - 2|u|/eps_u^2) for |u| < eps_u, else 0  (>= 0).
+// The weight w_i = mu_f lambda_i is 0 for a node farther than dhat from the ground.
+// Explicit integration uses the same law on the current slip h v (friction_force).
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "potential/barrier.h"
+#include "potential/node_term.h"
+
+namespace invfree {
+
+constexpr double kFrictionEpsV = 1e-3;  // m/s, the demo's eps_v
+
+inline double friction_value(double u, double weight, double eps_u) {
+  const double y = std::abs(u);
+  if (y >= eps_u) return weight * y;
+  return weight * (-y * y * y / (3.0 * eps_u * eps_u) + y * y / eps_u + eps_u / 3.0);
+}
+
+inline double friction_derivative(double u, double weight, double eps_u) {
+  const double y = std::abs(u);
+  if (y >= eps_u) return weight * (u > 0.0 ? 1.0 : -1.0);
+  return weight * u * (2.0 / eps_u - y / (eps_u * eps_u));
+}
+
+inline double friction_second_derivative(double u, double weight, double eps_u) {
+  const double y = std::abs(u);
+  if (y >= eps_u) return 0.0;
+  return weight * (2.0 / eps_u - 2.0 * y / (eps_u * eps_u));
+}
+
+// mu_f lambda for a node whose gap to the ground is `gap`: 0 beyond dhat.
+inline double friction_weight(double mu_f, double gap, const BarrierParams& barrier) {
+  return gap < barrier.dhat ? -mu_f * barrier_derivative(gap, barrier) : 0.0;
+}
+
+struct GroundFriction {
+  bool on = false;
+  std::vector<double> weight;  // mu_f lambda_i per node, lagged
+  double eps_u = 0.0;          // eps_v h
+
+  double value(const NodeState& s) const {
+    const double w = weight[s.index];
+    return w > 0.0 ? friction_value(s.x - s.x_start, w, eps_u) : 0.0;
+  }
+  void add_derivatives(const NodeState& s, double scale, NodeDerivatives& d) const {
+    const double w = weight[s.index];
+    if (w > 0.0) {
+      const double u = s.x - s.x_start;
+      d.gx += scale * friction_derivative(u, w, eps_u);
+      d.hxx += scale * friction_second_derivative(u, w, eps_u);
+    }
+  }
+};
+
+}  // namespace invfree

@@ -1,0 +1,19 @@
+// The solver's private workspace of a Simulation: the step's problem (every term's data,
+// frozen for the step), Newton's buffers (sparse pattern, symbolic factorisation, the
+// reused factor) and scratch vectors. Built once per mesh; a step allocates nothing.
+// Embedding programs never need it (invfree.h does not include it); tests and benchmarks
+// that look inside a step do.
+#pragma once
+
+#include "potential/incremental_potential.h"
+#include "solver/newton.h"
+
+namespace invfree {
+
+struct StepWorkspace {
+  StepProblem problem;
+  NewtonWorkspace newton;
+  VecX z, x_new, v_new;
+};
+
+}  // namespace invfree

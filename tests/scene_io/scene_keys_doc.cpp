@@ -1,0 +1,71 @@
+#include "tests/scene_io/scene_keys_doc.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "scene_io/scene_keys.h"
+
+namespace invfree::test {
+
+namespace {
+
+// A default as the docs show it: numbers with at most 6 significant digits ("35714.3"),
+// anything else as TOML writes it.
+std::string shown(const std::string& toml) {
+  char* end = nullptr;
+  const double v = std::strtod(toml.c_str(), &end);
+  if (toml.empty() || end != toml.c_str() + toml.size()) return "`" + toml + "`";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string range_or_choices(const SceneKeyInfo& k) {
+  if (k.choices.empty()) return k.range.empty() && k.type != "boolean" ? "finite" : k.range;
+  std::string out;
+  for (const auto& c : k.choices) {
+    out += out.empty() ? "`\"" : ", `\"";
+    out += c;
+    out += "\"`";
+  }
+  return out;
+}
+
+// Table cell text: a '|' would end the cell.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string scene_keys_markdown() {
+  std::string md = std::string(kSceneKeysBegin) + "\n\n";
+  md += "`name` (string): the scene's name; by default the file's name without `.toml`.\n";
+  const auto keys = scene_key_info();
+  for (const auto& section : scene_section_info()) {
+    md += "\n### [" + section.name + "]: " + section.doc + "\n\n";
+    md += "| key | type | unit | range or values | default | meaning |\n";
+    md += "|---|---|---|---|---|---|\n";
+    for (const auto& k : keys) {
+      if (k.section != section.name) continue;
+      md += "| `" + k.key + "` | " + k.type + " | " + k.unit + " | " + range_or_choices(k) + " | " +
+            cell(shown(k.default_value)) + " | " + cell(k.doc) + " |\n";
+    }
+  }
+  return md + "\n" + kSceneKeysEnd + "\n";
+}
+
+std::string generated_block(const std::string& document) {
+  const size_t begin = document.find(kSceneKeysBegin);
+  const size_t end = document.find(kSceneKeysEnd);
+  if (begin == std::string::npos || end == std::string::npos || end < begin) return "";
+  const size_t stop = document.find('\n', end);
+  return document.substr(begin, (stop == std::string::npos ? document.size() : stop + 1) - begin);
+}
+
+}  // namespace invfree::test

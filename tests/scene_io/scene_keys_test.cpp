@@ -1,0 +1,128 @@
+// The key table (scene_io/key_table.cpp) against what is derived from it or must agree
+// with it: docs/scene-keys.md, the fuzz dictionary and seeds, the core's value bounds, the
+// choices of string keys.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "scene_io/builtin_scenes.h"
+#include "scene_io/scene_file.h"
+#include "tests/scene_io/scene_keys_doc.h"
+
+namespace invfree {
+namespace {
+
+std::string read_source_file(const std::string& relative) {
+  std::ifstream in(std::string(INVFREE_SOURCE_DIR) + "/" + relative, std::ios::binary);
+  EXPECT_TRUE(in) << relative;
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(SceneKeysDoc, MatchesTheParsersKeyTable) {
+  const std::string doc = read_source_file("docs/scene-keys.md");
+  EXPECT_EQ(test::generated_block(doc), test::scene_keys_markdown())
+      << "docs/scene-keys.md is out of date; regenerate its table with\n"
+         "  build/release/tests/invfree_scene_keys_doc docs/scene-keys.md";
+  for (const auto& key : scene_keys())
+    EXPECT_NE(doc.find("| `" + key.substr(key.find('.') + 1) + "` |"), std::string::npos) << key;
+}
+
+// Every section header, key and string value of the table is a token of the fuzz
+// dictionary (which also holds TOML syntax and hand-picked values).
+TEST(SceneKeysDoc, FuzzDictionaryHasEverySectionKeyAndChoice) {
+  std::set<std::string> tokens;
+  std::istringstream dict(read_source_file("tests/fuzz/scene.dict"));
+  for (std::string line; std::getline(dict, line);)
+    if (!line.empty() && line[0] == '"') tokens.insert(line);
+  auto expect_token = [&](const std::string& raw) {  // raw as the dictionary writes it
+    EXPECT_TRUE(tokens.count("\"" + raw + "\"")) << "tests/fuzz/scene.dict lacks \"" << raw << "\"";
+  };
+  for (const auto& s : scene_section_info()) expect_token("[" + s.name + "]");
+  for (const auto& k : scene_key_info()) {
+    expect_token(k.key);
+    for (const auto& c : k.choices) expect_token("\\\"" + c + "\\\"");
+  }
+  expect_token("name");
+}
+
+// Together, the seed inputs of tests/fuzz/corpus/ use every key (in a file or in --set).
+TEST(SceneKeysDoc, FuzzSeedsUseEveryKey) {
+  std::set<std::string> used;
+  const std::string dir = std::string(INVFREE_SOURCE_DIR) + "/tests/fuzz/corpus";
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().filename().string().rfind("seed_", 0) != 0) continue;
+    std::ifstream in(f.path());
+    std::string section;
+    bool overrides = false;
+    for (std::string line; std::getline(in, line);) {
+      if (line == "%%") overrides = true;
+      const size_t eq = line.find('=');
+      if (!overrides && line.size() > 2 && line[0] == '[') {
+        section = line.substr(1, line.find(']') - 1);
+      } else if (eq != std::string::npos) {
+        std::string key = line.substr(0, eq);
+        key.erase(key.find_last_not_of(' ') + 1);
+        used.insert(overrides || key.find('.') != std::string::npos ? key : section + "." + key);
+      }
+    }
+  }
+  for (const auto& key : scene_keys())
+    EXPECT_TRUE(used.count(key)) << key << " is in no tests/fuzz/corpus/seed_* input";
+}
+
+// The core's bounds (scene_value_bounds) name scene keys, and the reader enforces each
+// bound at the key the user wrote, with the core's wording.
+TEST(SceneKeys, EveryBoundIsAKeyAndIsEnforcedWhereItIsRead) {
+  const auto keys = scene_keys();
+  const SceneDef base = *load_builtin_scene("compress").scene;
+  for (const auto& v : scene_value_bounds()) {
+    EXPECT_NE(std::find(keys.begin(), keys.end(), v.key), keys.end()) << v.key;
+    const ValueBounds& b = v.bounds;
+    std::vector<double> outside;
+    const double step = b.integer ? 1.0 : 1e-9;
+    if (std::isfinite(b.lo)) outside.push_back(b.lo_open ? b.lo : b.lo - step);
+    if (std::isfinite(b.hi)) outside.push_back(b.hi_open ? b.hi : b.hi + step);
+    for (double x : outside) {
+      char value[64];
+      std::snprintf(value, sizeof value, b.integer ? "%.0f" : "%.17g", x);
+      SceneDef s = base;
+      const std::string assignment = std::string(v.key) + "=" + value;
+      EXPECT_NE(apply_override(s, assignment).find(std::string(v.key) + ": " + b.requirement()),
+                std::string::npos)
+          << assignment << ": " << apply_override(s, assignment);
+      const std::string section = std::string(v.key).substr(0, std::string(v.key).find('.'));
+      const std::string key = std::string(v.key).substr(section.size() + 1);
+      const SceneLoad load =
+          parse_scene_toml("[" + section + "]\n" + key + " = " + value + "\n", "b.toml");
+      EXPECT_NE(load.error.find("b.toml:2: " + std::string(v.key) + ": " + b.requirement()),
+                std::string::npos)
+          << load.error;
+    }
+  }
+}
+
+TEST(SceneKeys, EveryChoiceReadsAndWritesBack) {
+  const SceneDef base = *load_builtin_scene("compress").scene;
+  for (const auto& k : scene_key_info()) {
+    for (const auto& c : k.choices) {
+      SceneDef s = base;
+      if (k.key == "model" && c != "neo-hookean") s.jitter = 0.0;
+      EXPECT_EQ(apply_override(s, k.section + "." + k.key + "=" + c), "") << c;
+      EXPECT_NE(scene_to_toml(s).find("\n" + k.key + " = \"" + c + "\"\n"), std::string::npos)
+          << c << "\n"
+          << scene_to_toml(s);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace invfree

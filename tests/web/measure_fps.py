@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""Frames per second of the web page (docs/web.md) in headless Chromium, per n_seg: the
+figure behind the page's n_seg slider maximum (kWebMaxSegments in app/web/web_main.cpp).
+A measurement, not a test.
+
+Usage: tests/web/measure_fps.py [--page-dir build/web] [--frames 300] N_SEG...
+For each n_seg: opens the page at 1280x720 with ?n_seg=N (the compress scene, playing),
+and times `--frames` frames from the first one drawn, as the desktop's
+`invfree live --frames 300 --bench` does. Prints one line per n_seg: frames/s (wall
+clock), and the CPU time all of the browser's processes spent per frame (the page's
+thread, SwiftShader's, the compositor's; from /proc). On a loaded machine the first falls
+with the share of the cores the browser gets; the second does not (much): a frame whose
+CPU time is under 33.3 ms holds 30 frames/s on an idle machine even if all its work ran
+one after the other on one core.
+"""
+
+import argparse
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import page_driver as pd  # noqa: E402
+
+
+def browser_cpu_seconds(root_pid):
+    """User + system CPU time of `root_pid` (chromedriver) and all its descendants: the
+    browser's processes (page, GPU/SwiftShader, network, ...)."""
+    children, times = {}, {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        pid, ppid = int(entry), int(fields[1])
+        children.setdefault(ppid, []).append(pid)
+        times[pid] = int(fields[11]) + int(fields[12])  # utime + stime, clock ticks
+    total, todo = 0, [root_pid]
+    while todo:
+        pid = todo.pop()
+        total += times.get(pid, 0)
+        todo.extend(children.get(pid, []))
+    return total / os.sysconf("SC_CLK_TCK")
+
+
+def measure(driver, url, n_seg, frames):
+    driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                           {"width": 1280, "height": 720, "deviceScaleFactor": 1, "mobile": False})
+    driver.get(f"{url}?n_seg={n_seg}")
+    first = pd.wait_for(driver, lambda s: s["frames"] >= 1, "the first frame")
+    if first["n_seg"] != n_seg:
+        raise SystemExit(f"n_seg={n_seg} was not applied (page note: {first['note']})")
+    driver_pid = driver.service.process.pid
+    start, cpu_start = time.monotonic(), browser_cpu_seconds(driver_pid)
+    last = pd.wait_for(driver, lambda s: s["frames"] >= first["frames"] + frames,
+                       f"{frames} frames", timeout=600)
+    seconds, cpu = time.monotonic() - start, browser_cpu_seconds(driver_pid) - cpu_start
+    drawn = last["frames"] - first["frames"]
+    return drawn / seconds, 1e3 * cpu / drawn, last["step_ms"], last["steps"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--page-dir", default=os.path.join(os.path.dirname(__file__), "../../build/web"))
+    parser.add_argument("--frames", type=int, default=300)
+    parser.add_argument("n_seg", type=int, nargs="+")
+    args = parser.parse_args()
+    missing = pd.missing_toolchain(args.page_dir)
+    if missing:
+        raise SystemExit(f"measure_fps: {missing}")
+    server = pd.PageServer(args.page_dir)
+    driver = pd.open_browser()
+    try:
+        for n in args.n_seg:
+            fps, cpu_ms, step_ms, steps = measure(driver, server.url, n, args.frames)
+            print(f"web fps: n_seg {n}: {fps:.1f} frames/s, browser CPU {cpu_ms:.1f} ms/frame "
+                  f"over {args.frames} frames ({steps} steps, {step_ms:.2f} ms/step), "
+                  f"load average {os.getloadavg()[0]:.1f}", flush=True)
+    finally:
+        driver.quit()
+        server.close()
+
+
+if __name__ == "__main__":
+    main()
