@@ -11,6 +11,7 @@
 #include "scene_io/builtin_scenes.h"
 #include "simulation.h"
 #include "solver/step_workspace.h"
+#include "tests/potential/problem_fixture.h"
 #include "tests/test_support.h"
 
 namespace invfree {
@@ -27,18 +28,7 @@ struct PullFixture {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1);
     const int n = mesh.node_count();
-    p.mesh = &mesh;
-    p.mass = &mass;
-    p.elasticity.model = Model::NeoHookean;
-    p.elasticity.lame = lame_from_young_poisson(1e4, 0.3);
-    p.elasticity.projection = HessianProjection::None;
-    p.h = 0.05;
-    p.gravity.on = true;
-    p.gravity.g = Vec2(0.0, -9.81);
-    p.ground.barrier = {0.01, 1e5, 1.0 / 3};
-    p.ceiling.barrier = p.ground.barrier;
-    p.ground.on = true;
-    p.ground.y0 = -0.6;
+    test::set_common_terms(p, mesh, mass, Model::NeoHookean, 0.05, -0.6);
     z.resize(2 * n);
     p.x_tilde.resize(2 * n);
     p.x_start.resize(2 * n);

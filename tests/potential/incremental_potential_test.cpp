@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "tests/potential/problem_fixture.h"
 #include "tests/test_support.h"
 
 namespace invfree {
@@ -23,18 +24,8 @@ struct Fixture {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1);
     const int n = mesh.node_count();
-    p.mesh = &mesh;
-    p.mass = &mass;
-    p.elasticity.model = model;
-    p.elasticity.lame = lame_from_young_poisson(1e4, 0.3);
-    p.elasticity.projection = HessianProjection::None;
-    p.h = 0.5;  // a large step keeps eps_u = eps_v h well above the FD step
-    p.gravity.on = true;
-    p.gravity.g = Vec2(0.0, -9.81);
-    p.ground.barrier = {0.01, 1e5, 1.0 / 3};
-    p.ceiling.barrier = p.ground.barrier;
-    p.ground.on = true;
-    p.ground.y0 = -0.5 - 0.005;
+    // A large step keeps eps_u = eps_v h well above the FD step.
+    test::set_common_terms(p, mesh, mass, model, 0.5, -0.5 - 0.005);
     p.friction.on = true;
     p.friction.eps_u = 1e-3 * p.h;
     p.friction.weight.assign(n, 0.0);
