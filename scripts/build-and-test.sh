@@ -4,7 +4,10 @@
 #   0. scripts/install-deps.sh (as root directly, otherwise through sudo)
 #   1. release build, every test (ctest)
 #   2. libFuzzer over the scene parser and --set overrides for INVFREE_FUZZ_SECONDS (60)
-#   3. AddressSanitizer + UndefinedBehaviorSanitizer build (preset "sanitize": -O1, assertions on), every test again
+#   3. AddressSanitizer + UndefinedBehaviorSanitizer build (preset "sanitize": -O1, assertions
+#      on, -g1: line tables for the reports' stack traces, a third less compile time than -g),
+#      every test again except those labelled `heavy` (long runs of code the other tests
+#      already cover; tests/CMakeLists.txt says which, and they run in the release stage)
 # INVFREE_CI_STAGES picks stages (default "release,fuzz,sanitize"), e.g.
 #   INVFREE_CI_STAGES=release bash scripts/build-and-test.sh    # the quick local check
 set -euo pipefail
@@ -31,6 +34,6 @@ if [[ $stages == *,sanitize,* ]]; then
   ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0" \
-    ctest --preset sanitize
+    ctest --preset sanitize --label-exclude heavy
 fi
 stage "done"
