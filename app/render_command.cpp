@@ -39,6 +39,7 @@
 #include "app/render/frame_writer.h"
 #include "app/render/offscreen_context.h"
 #include "app/render/renderer.h"
+#include "app/render/view_choices.h"
 #include "app/scene_options.h"
 #include "simulation.h"
 
@@ -58,6 +59,8 @@ struct RenderOptions {
   bool force = false;
   int png_level = 1;
   int writer_threads = 1;
+  std::string color_range = "fixed";  // render::parse_color_range_mode
+  std::string camera = "fixed";       // fixed | follow
 };
 
 // The frame rates a movie may have (--fps, or the real-time rate it defaults to).
@@ -290,7 +293,10 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
                              render::FrameWriter& writer, const RenderOptions& opt,
                              const std::function<double()>& elapsed) {
   render::DrawOptions draw_options;
-  draw_options.edges = !opt.no_edges;
+  render::ColorRangeTracker color_range;
+  color_range.mode = *render::parse_color_range_mode(opt.color_range);
+  render::FollowCamera follow;
+  const render::FrameLayout layout = renderer.layout();
   Progress progress(opt.frames);
   RenderedFrames out;
   SimulationThread producer(sim, opt.frames, opt.steps_per_frame);
@@ -299,6 +305,11 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
     const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
     out.det_lo = out.frames == 0 ? *lo : std::min(out.det_lo, *lo);
     out.det_hi = out.frames == 0 ? *hi : std::max(out.det_hi, *hi);
+    color_range.apply(*lo, *hi, &draw_options);
+    const render::Camera cam = opt.camera == "follow" ? follow.next(state, layout.plot)
+                                                      : render::scene_camera(state.scene, layout);
+    draw_options.camera = cam;
+    draw_options.edges = !opt.no_edges && render::edges_legible(state.scene, cam.pixels_per_metre);
     renderer.draw(state, draw_options);
     std::vector<std::uint8_t> pixels = writer.take_buffer();
     renderer.read_pixels(&pixels);
@@ -407,7 +418,20 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--size", opt.size, "frame size in pixels")
       ->type_name("WxH")
       ->capture_default_str();
-  cmd->add_flag("--no-edges", opt.no_edges, "do not draw the triangle edges");
+  cmd->add_flag("--no-edges", opt.no_edges,
+                "do not draw the triangle edges (they are left out anyway where closer than 6 "
+                "pixels)");
+  cmd->add_option("--color-range", opt.color_range,
+                  "det F colour scale: fixed (0.25..4), run (automatic, from the frames so far: "
+                  "only widens) or frame (automatic per frame); automatic ranges are symmetric in "
+                  "log det F around 1")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fixed", "run", "frame"}));
+  cmd->add_option("--camera", opt.camera,
+                  "fixed (the scene's whole stage, the same every frame) or follow (frames the "
+                  "bodies, moving smoothly)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fixed", "follow"}));
   cmd->add_flag("--mp4", opt.mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");
   cmd->add_option("--fps", opt.fps,
                   "frame rate of movie.mp4 (default: real time, 1 / (h * steps-per-frame))")
