@@ -75,6 +75,9 @@ void on_focus(GLFWwindow*, int) {
 void on_enter(GLFWwindow*, int) {
   note_input();
 }
+void on_refresh(GLFWwindow*) {  // the window was uncovered: draw it again
+  note_input();
+}
 
 constexpr float kFontSize = 16.0f, kBigFontSize = 40.0f;  // at UI scale 1
 constexpr double kGrabRadiusPixels = 14.0;
@@ -594,6 +597,7 @@ struct LiveAppImpl {
     activate();
     if (!inject && idle()) {
       glfwWaitEventsTimeout(kIdleWaitSeconds);
+      if (!g_input_seen && !glfwWindowShouldClose(window)) return;  // nothing new to draw
     } else {
       glfwPollEvents();
     }
@@ -713,6 +717,7 @@ static std::string start_imgui(LiveAppImpl& a) {
   glfwSetFramebufferSizeCallback(a.window, on_size);
   glfwSetWindowFocusCallback(a.window, on_focus);
   glfwSetCursorEnterCallback(a.window, on_enter);
+  glfwSetWindowRefreshCallback(a.window, on_refresh);
   if (!ImGui_ImplGlfw_InitForOpenGL(a.window, true)) return "ImGui's GLFW backend could not start";
   a.imgui_glfw = true;
   if (!ImGui_ImplOpenGL3_Init(a.gl.opengl_es ? "#version 300 es" : "#version 330 core"))
