@@ -72,8 +72,10 @@ constexpr double kMinFps = 0.1, kMaxFps = 1000.0;
 // frames/s: the steps per frame closest to 1 / (30 h), at least 1 (a time step longer than
 // 1/30 s then plays at 1 / h frames/s, still real time).
 constexpr double kLectureFps = 30.0;
+constexpr int kMaxStepsPerFrame = 1000000;  // --steps-per-frame's range
 int lecture_steps_per_frame(double h) {
-  return std::max(1, static_cast<int>(std::lround(1.0 / (kLectureFps * h))));
+  return static_cast<int>(
+      std::clamp(std::round(1.0 / (kLectureFps * h)), 1.0, double(kMaxStepsPerFrame)));
 }
 
 // "1280x720" -> (1280, 720); false when malformed or outside 64..8192.
@@ -487,7 +489,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
                   "time steps between frames (default 1; with --mp4 or --gif and no --fps, the "
                   "lecture default: the steps that make real-time playback closest to 30 "
                   "frames/s, e.g. 3 at h = 0.01 s: 33.3 frames/s)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(CLI::Range(1, kMaxStepsPerFrame));
   add_output_directory_option(cmd, opt.out,
                               "output directory (must be empty or new, see --force; locked while "
                               "the run writes, see docs/outputs.md)");
