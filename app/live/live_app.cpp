@@ -595,7 +595,12 @@ struct LiveAppImpl {
 
   void frame(const Injection* inject, Image* capture) {
     activate();
-    if (!inject && idle()) {
+#ifndef __EMSCRIPTEN__  // (the browser calls each frame itself: nothing to wait for)
+    constexpr bool can_wait = true;
+#else
+    constexpr bool can_wait = false;
+#endif
+    if (can_wait && !inject && idle()) {
       glfwWaitEventsTimeout(kIdleWaitSeconds);
       if (!g_input_seen && !glfwWindowShouldClose(window)) return;  // nothing new to draw
     } else {
@@ -700,14 +705,7 @@ static std::string start_imgui(LiveAppImpl& a) {
   ImGui::StyleColorsDark();
   ImGui::GetStyle().FrameRounding = 3.0f;
   a.base_style = ImGui::GetStyle();
-  // Latin, Greek (mu, lambda, nu) and a few symbols, from the embedded DejaVu Sans.
-  static ImVector<ImWchar> ranges;
-  if (ranges.empty()) {
-    ImFontGlyphRangesBuilder builder;
-    builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
-    builder.AddText("μλνσψΨΔ≤≥·×−²");
-    builder.BuildRanges(&ranges);
-  }
+  // (The fonts: build_fonts, at the UI scale, before the first frame.)
   // Ours first: ImGui's backend installs its own and calls these from them.
   glfwSetKeyCallback(a.window, on_key);
   glfwSetCharCallback(a.window, on_char);
@@ -730,7 +728,9 @@ static std::string start_imgui(LiveAppImpl& a) {
 // 1280x720 it is (never smaller), in steps of 0.25: 1 at 1280x720, 1.5 at 1920x1080.
 static float default_ui_scale(GLFWwindow* window) {
   float cx = 1.0f, cy = 1.0f;
+#ifndef __EMSCRIPTEN__
   glfwGetWindowContentScale(window, &cx, &cy);
+#endif
   int w = 0, h = 0;
   glfwGetWindowSize(window, &w, &h);
   const float size = std::max(1.0f, std::min(w / 1280.0f, h / 720.0f));

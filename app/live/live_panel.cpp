@@ -304,6 +304,16 @@ void contact_section(LiveController& lc, PanelState& ps) {
                  kPullStiffnessRange, "N/m", "%.3g", true);
 }
 
+// The top and bottom values of a plot `h` high, beside it (right of the last item).
+void y_range_labels(const char* top, const char* bottom, float width, float h) {
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted(top);
+  ImGui::Dummy(ImVec2(width, h - 2.0f * ImGui::GetTextLineHeightWithSpacing()));
+  ImGui::TextUnformatted(bottom);
+  ImGui::EndGroup();
+}
+
 // A plot with its title above and its y range written beside it (the top and bottom
 // values), so that a change of 0.001 is not read as a steep ramp; the range spans at least
 // `min_span` around the data.
@@ -332,12 +342,7 @@ void labelled_plot(PanelState& ps, const char* name, const char* title,
   ImGui::PlotLines(id.c_str(), values.data(), static_cast<int>(values.size()), 0, nullptr, lo, hi,
                    ImVec2(w, h));
   remember(ps, name);
-  ImGui::SameLine();
-  ImGui::BeginGroup();
-  ImGui::TextUnformatted(top);
-  ImGui::Dummy(ImVec2(label_w, h - 2.0f * ImGui::GetTextLineHeightWithSpacing()));
-  ImGui::TextUnformatted(bottom);
-  ImGui::EndGroup();
+  y_range_labels(top, bottom, label_w, h);
 }
 
 // Kinetic, elastic, gravitational and contact energy over the last steps on one y axis
@@ -389,12 +394,7 @@ void energy_plot(const LiveController& lc, PanelState& ps) {
     dl->AddPolyline(points.data(), static_cast<int>(points.size()), colors[k], 0,
                     std::max(1.5f, 1.5f * ps.ui_scale));
   }
-  ImGui::SameLine();
-  ImGui::BeginGroup();
-  ImGui::TextUnformatted(top);
-  ImGui::Dummy(ImVec2(label_w, h - 2.0f * ImGui::GetTextLineHeightWithSpacing()));
-  ImGui::TextUnformatted(bottom);
-  ImGui::EndGroup();
+  y_range_labels(top, bottom, label_w, h);
 }
 
 void stats_section(const LiveController& lc, PanelState& ps) {
