@@ -340,6 +340,64 @@ void type_into(LiveApp& app, const std::string& name, const std::string& text) {
   app.frame(&in);
 }
 
+TEST(LiveWindow, APulledBodyStaysOutOfThePanels) {
+  // Dragging a node over the ImGui panel (left) or the det F panel (right): the spring's
+  // target stops at the visible picture's edge, so the body cannot slide behind a panel.
+  LiveOptions o;
+  o.paused = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  app->frame();
+  const float panel_right = app->widget_rects().at("mu").x1;  // inside the ImGui panel
+  const SceneDef& s = app->controller().settings();
+  const int node = s.n_seg * (s.n_seg + 1);  // top left corner
+  const Vec2 p = app->to_window(app->controller().simulation().x.segment<2>(2 * node));
+  Injection in;
+  in.x = static_cast<float>(p.x());
+  in.y = static_cast<float>(p.y());
+  app->frame(&in);
+  in.down[0] = true;
+  app->frame(&in);
+  ASSERT_TRUE(app->controller().pulling());
+  in.x = 20.0f;  // far into the ImGui panel
+  app->frame(&in);
+  EXPECT_GT(app->to_window(app->controller().pull_target()).x(), panel_right);
+  in.x = 1270.0f;  // into the det F panel (the right 290 pixels at 1280x720)
+  app->frame(&in);
+  EXPECT_LT(app->to_window(app->controller().pull_target()).x(), 1280.0 - 290.0);
+  in.down[0] = false;
+  app->frame(&in);
+}
+
+TEST(LiveWindow, NoHoverRingUntilThePointerMoves) {
+  // A pointer resting on a node from the first frame on (Xvfb's, in a scripted screenshot)
+  // rings nothing: the picture equals one with the pointer resting on no node. Once it
+  // moves, the node under it is ringed.
+  LiveOptions o;
+  o.paused = true;
+  o.hide_panel = true;
+  auto on_node = open_app(o);
+  auto elsewhere = open_app(o);
+  ASSERT_TRUE(on_node && elsewhere);
+  const Vec2 p = on_node->to_window(on_node->controller().simulation().x.segment<2>(0));
+  Injection still;
+  still.x = static_cast<float>(p.x());
+  still.y = static_cast<float>(p.y());
+  Injection corner;
+  corner.x = corner.y = 3.0f;
+  Image resting, reference, ringed;
+  for (int k = 0; k < 3; ++k) {
+    on_node->frame(&still, &resting);
+    elsewhere->frame(&corner, &reference);
+  }
+  EXPECT_EQ(differing_pixels(resting, reference), 0);
+  Injection moved = still;
+  moved.x += 2.0f;
+  on_node->frame(&moved);
+  on_node->frame(&moved, &ringed);
+  EXPECT_GT(differing_pixels(resting, ringed), 30);
+}
+
 TEST(LiveWindow, ANoteMovesNoControl) {
   LiveOptions o;
   o.paused = true;
