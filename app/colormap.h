@@ -40,4 +40,18 @@ inline Rgb det_f_color(double det_f, double range = kDetFRange) {
   return diverging_color(det_f_scale_position(det_f, range));
 }
 
+// An automatic range for the scale: the smallest of 1.01, 1.02, 1.05, 1.1, 1.2, 1.5, 2, 4,
+// 8, ... 1024 that holds det F in [lo, hi] (lo <= 0, inverted, is ignored: green anyway),
+// so that a small deformation uses the whole scale and the bar's labels are round numbers.
+inline double auto_det_f_range(double lo, double hi) {
+  double need = std::max(hi, 1.0);
+  if (lo > 0.0) need = std::max(need, 1.0 / lo);
+  static constexpr double small[] = {1.01, 1.02, 1.05, 1.1, 1.2, 1.5, 2.0};
+  for (double r : small)
+    if (need <= r * (1.0 + 1e-12)) return r;
+  double r = 2.0;
+  while (r < need && r < 1024.0) r *= 2.0;
+  return r;
+}
+
 }  // namespace invfree

@@ -11,6 +11,7 @@
 #include "app/interrupt.h"
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
+#include "app/output_files.h"
 #include "app/scene_options.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
@@ -23,6 +24,8 @@ struct LiveCommandOptions {
   SceneOptions scene;  // the one shown first; the --set overrides apply to it
   std::vector<std::string> scene_files;
   std::string size = "1280x720";
+  std::string det_f_panel = "beside";  // beside | over | hidden
+  std::string color_range = "fixed";   // render::parse_color_range_mode
   live::LiveOptions live;
 };
 
@@ -64,12 +67,23 @@ int run_live_command(const LiveCommandOptions& opt) {
   lo.width = w;
   lo.height = h;
   if (int code = build_scenes(opt, &lo); code != exit_code::kOk) return code;
+  // Outputs are checked before the window opens, by the rules `render` follows
+  // (docs/outputs.md): a file that cannot be written, a non-empty --record DIR without
+  // --force (exit 2), and so on.
   if (!lo.screenshot_file.empty()) {
     std::vector<std::string> inputs = opt.scene.input_files();
     inputs.insert(inputs.end(), opt.scene_files.begin(), opt.scene_files.end());
     if (auto e = check_output_files({lo.screenshot_file}, inputs))
       return fail(e.exit_code, e.message);
   }
+  if (!lo.record_dir.empty()) {
+    OutputDirectory probe;
+    if (auto e = probe.open(lo.record_dir, lo.record_force)) return fail(e.exit_code, e.message);
+  }
+  lo.det_f_panel = opt.det_f_panel == "over"     ? render::PanelMode::Overlay
+                   : opt.det_f_panel == "hidden" ? render::PanelMode::Hidden
+                                                 : render::PanelMode::Side;
+  lo.color_range = *render::parse_color_range_mode(opt.color_range);
   // Scripted runs draw as fast as they can: no waiting for the screen's refresh.
   if (lo.frames > 0 || lo.bench) lo.vsync = false;
   lo.stop = [] { return interrupted(); };
@@ -107,9 +121,25 @@ void register_live_command(CLI::App& app, int& exit_code) {
       ->check(non_empty_path());
   cmd->add_option("--record", opt.live.record_dir,
                   "record from the start: DIR/frame_000000.png, ... (as `invfree render`); DIR "
-                  "must be empty")
+                  "must be empty or new (see --force); checked before the window opens")
       ->type_name("DIR")
       ->check(non_empty_path());
+  cmd->add_flag("--force", opt.live.record_force,
+                "--record into a non-empty directory: this run's frames replace those of the same "
+                "number (as `invfree render --force`)");
+  cmd->add_option("--ui-scale", opt.live.ui_scale,
+                  "size of the panel's text and of the det F panel, 0.75 to 3 (default: from the "
+                  "screen: 1 at 1280x720, 1.5 at 1920x1080; keys + and -)")
+      ->check(CLI::Range(double(live::kMinUiScale), double(live::kMaxUiScale)));
+  cmd->add_option("--det-f-panel", opt.det_f_panel,
+                  "the det F panel (colour bar): beside the picture, over it, or hidden (key D)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"beside", "over", "hidden"}));
+  cmd->add_option("--color-range", opt.color_range,
+                  "det F colours: fixed (0.25..4), run (automatic, from the run so far) or frame "
+                  "(automatic per frame) (key C)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fixed", "run", "frame"}));
   cmd->add_flag("--bench", opt.live.bench,
                 "print frames per second (with the simulation running) at the end");
   cmd->add_flag("--paused", opt.live.paused, "start paused");

@@ -8,6 +8,7 @@
 // the PNG. So a frame costs about the largest of the three, not their sum.
 // Progress (frame i/N, elapsed, ETA) goes to stderr when it is a terminal; a one-line
 // summary to stdout.
+#include <fcntl.h>
 #include <pthread.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
@@ -39,6 +40,7 @@
 #include "app/render/frame_writer.h"
 #include "app/render/offscreen_context.h"
 #include "app/render/renderer.h"
+#include "app/render/view_choices.h"
 #include "app/scene_options.h"
 #include "simulation.h"
 
@@ -49,19 +51,32 @@ namespace {
 struct RenderOptions {
   SceneOptions scene;
   int frames = 300;
-  int steps_per_frame = 1;
+  int steps_per_frame = 0;  // 0: 1, or with a movie the lecture default (lecture_steps_per_frame)
   std::string out = "frames";
   std::string size = "1280x720";
   bool no_edges = false;
   bool mp4 = false;
+  bool gif = false;
   double fps = 0.0;  // 0: real time
   bool force = false;
   int png_level = 1;
   int writer_threads = 1;
+  std::string color_range = "fixed";  // render::parse_color_range_mode
+  std::string camera = "fixed";       // fixed | follow
 };
 
 // The frame rates a movie may have (--fps, or the real-time rate it defaults to).
 constexpr double kMinFps = 0.1, kMaxFps = 1000.0;
+
+// A movie for a lecture plays in real time (its length is the simulated time) at about 30
+// frames/s: the steps per frame closest to 1 / (30 h), at least 1 (a time step longer than
+// 1/30 s then plays at 1 / h frames/s, still real time).
+constexpr double kLectureFps = 30.0;
+constexpr int kMaxStepsPerFrame = 1000000;  // --steps-per-frame's range
+int lecture_steps_per_frame(double h) {
+  return static_cast<int>(
+      std::clamp(std::round(1.0 / (kLectureFps * h)), 1.0, double(kMaxStepsPerFrame)));
+}
 
 // "1280x720" -> (1280, 720); false when malformed or outside 64..8192.
 bool parse_size(const std::string& text, int* width, int* height) {
@@ -98,16 +113,19 @@ std::string frame_name(int i) {
 
 // Runs ffmpeg over this run's frames DIR/frame_000000.png .. frame_<frames-1>.png into
 // DIR/movie.mp4 (H.264, yuv420p, dimensions padded to even numbers with white, as yuv420p
-// needs); older frames after them (--force) are not part of it. Written under a
-// temporary name and renamed when ffmpeg succeeded. An interruption reaches ffmpeg too;
-// when it stopped ffmpeg there is no movie and no error. ffmpeg's own messages are held
-// in a memory file and shown only when it failed by itself. Returns "" or a one-line
-// error; *made tells whether DIR/movie.mp4 was written.
+// needs) or DIR/movie.gif (ffmpeg's palettegen / paletteuse: one palette made for the
+// whole clip); older frames after them (--force) are not part of it. Written under a
+// temporary name and renamed when ffmpeg succeeded. ffmpeg reports its progress on a pipe
+// (-progress): `on_frame(n)` is called with each frame count it reports. An interruption
+// reaches ffmpeg too; when it stopped ffmpeg there is no movie and no error. ffmpeg's own
+// messages are held in a memory file and shown only when it failed by itself. Returns ""
+// or a one-line error; *made tells whether the movie was written.
 std::string make_movie(const std::string& ffmpeg, const std::string& dir, int frames, double fps,
-                       bool* made) {
+                       bool gif, const std::function<void(int)>& on_frame, bool* made) {
   *made = false;
-  const std::string tmp = dir + "/movie.tmp" + std::to_string(::getpid()) + ".mp4";
-  const std::string final_path = dir + "/movie.mp4";
+  const std::string ext = gif ? "gif" : "mp4";
+  const std::string tmp = dir + "/movie.tmp" + std::to_string(::getpid()) + "." + ext;
+  const std::string final_path = dir + "/movie." + ext;
   char rate[32];
   std::snprintf(rate, sizeof rate, "%.6g", fps);
   std::vector<std::string> args = {ffmpeg,
@@ -115,39 +133,61 @@ std::string make_movie(const std::string& ffmpeg, const std::string& dir, int fr
                                    "-y",
                                    "-loglevel",
                                    "error",
+                                   "-progress",
+                                   "pipe:1",
                                    "-framerate",
                                    rate,
                                    "-i",
                                    dir + "/frame_%06d.png",
-                                   "-vf",
-                                   "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white",
                                    "-frames:v",
-                                   std::to_string(frames),
-                                   "-c:v",
-                                   "libx264",
-                                   "-pix_fmt",
-                                   "yuv420p",
-                                   "-movflags",
-                                   "+faststart",
-                                   "-f",
-                                   "mp4",
-                                   tmp};
+                                   std::to_string(frames)};
+  const std::vector<std::string> mp4_args = {
+      "-vf",       "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white",
+      "-c:v",      "libx264",
+      "-pix_fmt",  "yuv420p",
+      "-movflags", "+faststart",
+      "-f",        "mp4"};
+  const std::vector<std::string> gif_args = {
+      "-vf", "split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse=dither=sierra2_4a",
+      "-f", "gif"};
+  for (const std::string& a : gif ? gif_args : mp4_args) args.push_back(a);
+  args.push_back(tmp);
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   std::fflush(nullptr);
   const int messages = ::memfd_create("ffmpeg-messages", MFD_CLOEXEC);  // -1: inherit stderr
+  int progress[2] = {-1, -1};
+  if (::pipe2(progress, O_CLOEXEC) != 0) progress[0] = progress[1] = -1;
   const pid_t pid = ::fork();
   if (pid < 0) {
     if (messages >= 0) ::close(messages);
+    for (int fd : progress)
+      if (fd >= 0) ::close(fd);
     return "cannot start ffmpeg: fork failed";
   }
   if (pid == 0) {
     if (messages >= 0) ::dup2(messages, STDERR_FILENO);
+    ::dup2(progress[1] >= 0 ? progress[1] : ::open("/dev/null", O_WRONLY), STDOUT_FILENO);
     ::execv(argv[0], argv.data());
     std::_Exit(127);
   }
   forward_interrupts_to(pid);
+  if (progress[1] >= 0) ::close(progress[1]);
+  // "frame=N" lines until ffmpeg closes its end (it exits).
+  if (progress[0] >= 0) {
+    std::string pending;
+    char buf[512];
+    for (;;) {
+      const ssize_t n = ::read(progress[0], buf, sizeof buf);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      pending.append(buf, static_cast<size_t>(n));
+      for (size_t eol; (eol = pending.find('\n')) != std::string::npos; pending.erase(0, eol + 1))
+        if (pending.compare(0, 6, "frame=") == 0) on_frame(std::atoi(pending.c_str() + 6));
+    }
+    ::close(progress[0]);
+  }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) {
@@ -264,6 +304,15 @@ class Progress {
     std::fflush(stderr);
     shown_ = true;
   }
+  // ffmpeg's progress while it makes the movie.
+  void encoding(const std::string& movie, int done, double elapsed) {
+    if (!tty_ || (elapsed - last_ < 0.1 && done < total_)) return;
+    last_ = elapsed;
+    std::fprintf(stderr, "\r\033[Krender: encoding %s with ffmpeg: frame %d/%d  %.1f s elapsed",
+                 movie.c_str(), done, total_, elapsed);
+    std::fflush(stderr);
+    shown_ = true;
+  }
   void clear() {
     if (shown_) std::fprintf(stderr, "\r\033[K");
     shown_ = false;
@@ -290,7 +339,10 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
                              render::FrameWriter& writer, const RenderOptions& opt,
                              const std::function<double()>& elapsed) {
   render::DrawOptions draw_options;
-  draw_options.edges = !opt.no_edges;
+  render::ColorRangeTracker color_range;
+  color_range.mode = *render::parse_color_range_mode(opt.color_range);
+  render::FollowCamera follow;
+  const render::FrameLayout layout = renderer.layout();
   Progress progress(opt.frames);
   RenderedFrames out;
   SimulationThread producer(sim, opt.frames, opt.steps_per_frame);
@@ -299,6 +351,11 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
     const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
     out.det_lo = out.frames == 0 ? *lo : std::min(out.det_lo, *lo);
     out.det_hi = out.frames == 0 ? *hi : std::max(out.det_hi, *hi);
+    color_range.apply(*lo, *hi, &draw_options);
+    const render::Camera cam = opt.camera == "follow" ? follow.next(state, layout.plot)
+                                                      : render::scene_camera(state.scene, layout);
+    draw_options.camera = cam;
+    draw_options.edges = !opt.no_edges && render::edges_legible(state.scene, cam.pixels_per_metre);
     renderer.draw(state, draw_options);
     std::vector<std::uint8_t> pixels = writer.take_buffer();
     renderer.read_pixels(&pixels);
@@ -322,20 +379,27 @@ int run_render(const RenderOptions& opt) {
     return fail(exit_code::kBadInput,
                 "--size: expected WIDTHxHEIGHT with each in 64..8192, got \"" + opt.size + "\"");
   std::string ffmpeg;
-  if (opt.mp4) {
+  const bool movie_wanted = opt.mp4 || opt.gif;
+  const char* movie_flag = opt.mp4 ? "--mp4" : "--gif";
+  if (movie_wanted) {
     ffmpeg = find_on_path("ffmpeg");
     if (ffmpeg.empty())
       return fail(exit_code::kBadInput,
-                  "--mp4 needs ffmpeg, which is not on PATH (install it: sudo apt-get install "
-                  "ffmpeg; or leave out "
-                  "--mp4 to write the PNG frames only)");
+                  std::string(movie_flag) +
+                      " needs ffmpeg, which is not on PATH (install it: sudo apt-get install "
+                      "ffmpeg; or leave out " +
+                      movie_flag + " to write the PNG frames only)");
   }
-  const double fps = opt.fps > 0.0 ? opt.fps : 1.0 / (scene->h * opt.steps_per_frame);
-  if (opt.mp4 && !(fps >= kMinFps && fps <= kMaxFps)) {
+  RenderOptions run = opt;
+  if (run.steps_per_frame == 0)
+    run.steps_per_frame = movie_wanted && opt.fps == 0.0 ? lecture_steps_per_frame(scene->h) : 1;
+  const double fps = opt.fps > 0.0 ? opt.fps : 1.0 / (scene->h * run.steps_per_frame);
+  if (movie_wanted && !(fps >= kMinFps && fps <= kMaxFps)) {
     char rate[32];
     std::snprintf(rate, sizeof rate, "%.6g", fps);
     return fail(exit_code::kBadInput,
-                std::string("--mp4: the real-time frame rate 1 / (h * steps-per-frame) = ") + rate +
+                std::string(movie_flag) +
+                    ": the real-time frame rate 1 / (h * steps-per-frame) = " + rate +
                     " frames/s is outside 0.1 to 1000; give --fps or change --steps-per-frame");
   }
   OutputDirectory out_dir;
@@ -352,34 +416,57 @@ int run_render(const RenderOptions& opt) {
   };
   Simulation sim = make_simulation(*scene);
   render::FrameWriter writer(opt.writer_threads, opt.png_level);
-  const RenderedFrames done = render_frames(sim, *renderer, writer, opt, elapsed);
+  const RenderedFrames done = render_frames(sim, *renderer, writer, run, elapsed);
   const std::string write_error = writer.finish();
-  const double seconds = elapsed();
+  const double render_seconds = elapsed();
   if (!write_error.empty()) return fail(exit_code::kOutputFailed, write_error);
 
   std::string movie;
+  const std::string movie_path = opt.out + (opt.gif ? "/movie.gif" : "/movie.mp4");
   bool movie_stopped = false;  // interrupted while ffmpeg ran
-  if (opt.mp4 && done.failure.status == StepStatus::Ok && !interrupted() && done.frames > 0) {
+  for (const bool gif : {false, true}) {
+    if (!(gif ? opt.gif : opt.mp4)) continue;
+    if (done.failure.status != StepStatus::Ok || interrupted() || done.frames == 0) break;
+    const std::string path = opt.out + (gif ? "/movie.gif" : "/movie.mp4");
+    Progress progress(done.frames);
+    const auto on_frame = [&](int n) { progress.encoding(path, n, elapsed()); };
     bool made = false;
-    if (auto e = make_movie(ffmpeg, opt.out, done.frames, fps, &made); !e.empty())
-      return fail(exit_code::kOutputFailed, e);
-    if (made) movie = ", " + opt.out + "/movie.mp4";
-    movie_stopped = !made;
+    const std::string e = make_movie(ffmpeg, opt.out, done.frames, fps, gif, on_frame, &made);
+    progress.clear();
+    if (!e.empty()) return fail(exit_code::kOutputFailed, e);
+    if (made) movie += ", " + path;
+    movie_stopped = movie_stopped || !made;
   }
+  const double seconds = elapsed();  // the movie's encoding included
+  char rate_text[32], encode_text[32];
+  std::snprintf(rate_text, sizeof rate_text, "%.4g", fps);
+  std::snprintf(encode_text, sizeof encode_text, "%.1f s", seconds - render_seconds);
   std::printf(
       "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, det F "
-      "in [%.4f, %.4f]\n",
+      "in [%.4f, %.4f]%s\n",
       sim.scene.name.c_str(), done.frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
       frame_name(std::max(done.frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time,
-      seconds, seconds > 0 ? done.frames / seconds : 0.0, done.det_lo, done.det_hi);
+      seconds, render_seconds > 0 ? done.frames / render_seconds : 0.0, done.det_lo, done.det_hi,
+      movie.empty()
+          ? ""
+          : (std::string("; movie: ") + rate_text + " frames/s, " +
+             std::to_string(run.steps_per_frame) + " step(s)/frame, encoded in " + encode_text)
+                .c_str());
   if (done.failure.status != StepStatus::Ok)
     return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) +
                                            " failed: " + step_status_name(done.failure.status) +
                                            ": " + done.failure.message);
   if (movie_stopped)
-    return fail(interrupted_exit_code(), "interrupted while making " + opt.out +
-                                             "/movie.mp4 (none written); the " +
-                                             std::to_string(done.frames) + " frames are complete");
+    return fail(interrupted_exit_code(), "interrupted while making " + movie_path +
+                                             " (none written); the " + std::to_string(done.frames) +
+                                             " frames are complete");
+  if (interrupted() && movie_wanted)
+    return fail(interrupted_exit_code(),
+                "interrupted after frame " + std::to_string(done.frames) +
+                    "; the frames written are complete, no movie was made (from them: ffmpeg "
+                    "-framerate " +
+                    rate_text + " -i " + opt.out + "/frame_%06d.png -pix_fmt yuv420p " + opt.out +
+                    "/movie.mp4)");
   if (interrupted())
     return fail(interrupted_exit_code(), "interrupted after frame " + std::to_string(done.frames) +
                                              "; the frames written are complete");
@@ -398,19 +485,37 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--frames", opt.frames, "number of frames, the initial state included")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--steps-per-frame", opt.steps_per_frame, "time steps between frames")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--steps-per-frame", opt.steps_per_frame,
+                  "time steps between frames (default 1; with --mp4 or --gif and no --fps, the "
+                  "lecture default: the steps that make real-time playback closest to 30 "
+                  "frames/s, e.g. 3 at h = 0.01 s: 33.3 frames/s)")
+      ->check(CLI::Range(1, kMaxStepsPerFrame));
   add_output_directory_option(cmd, opt.out,
                               "output directory (must be empty or new, see --force; locked while "
                               "the run writes, see docs/outputs.md)");
   cmd->add_option("--size", opt.size, "frame size in pixels")
       ->type_name("WxH")
       ->capture_default_str();
-  cmd->add_flag("--no-edges", opt.no_edges, "do not draw the triangle edges");
+  cmd->add_flag("--no-edges", opt.no_edges,
+                "do not draw the triangle edges (they are left out anyway where closer than 6 "
+                "pixels)");
+  cmd->add_option("--color-range", opt.color_range,
+                  "det F colour scale: fixed (0.25..4), run (automatic, from the frames so far: "
+                  "only widens) or frame (automatic per frame); automatic ranges are symmetric in "
+                  "log det F around 1")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fixed", "run", "frame"}));
+  cmd->add_option("--camera", opt.camera,
+                  "fixed (the scene's whole stage, the same every frame) or follow (frames the "
+                  "bodies, moving smoothly)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fixed", "follow"}));
   cmd->add_flag("--mp4", opt.mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");
+  cmd->add_flag("--gif", opt.gif,
+                "also write DIR/movie.gif with ffmpeg (one palette for the clip), for slides that "
+                "cannot play video");
   cmd->add_option("--fps", opt.fps,
-                  "frame rate of movie.mp4 (default: real time, 1 / (h * steps-per-frame))")
+                  "frame rate of the movie (default: real time, 1 / (h * steps-per-frame))")
       ->check(finite_range(kMinFps, kMaxFps));
   cmd->add_option("--png-level", opt.png_level,
                   "PNG compression level (stb_image_write; 1 is fastest)")

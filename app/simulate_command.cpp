@@ -13,6 +13,7 @@
 #include "app/interrupt.h"
 #include "app/output_files.h"
 #include "app/scene_options.h"
+#include "energy_report.h"
 #include "simulation.h"
 
 namespace invfree {
@@ -44,7 +45,10 @@ void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r
   const double gap = min_plane_gap(sim);
   csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual << ","
       << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
-      << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
+      << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << ",";
+  const EnergyReport e = energy_report(sim);
+  csv << e.kinetic << "," << e.elastic << "," << e.gravitational << "," << e.contact << ","
+      << r.wall_ms << "\n";
 }
 
 // The one-line summary on stdout: steps, time, mean Newton iterations and ms per step,
@@ -96,7 +100,8 @@ int run_simulate(const SimulateOptions& opt) {
   // CSV rows go to the temporary file in chunks, so memory stays flat however long the run.
   std::ostringstream csv;
   csv.precision(10);
-  csv << "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,wall_ms\n";
+  csv << "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,"
+         "kinetic,elastic,gravitational,contact,wall_ms\n";
   auto flush_csv = [&](bool force_flush) -> std::string {
     if (!csv_file.is_open() || (!force_flush && csv.tellp() < (1 << 16))) return "";
     const std::string chunk = csv.str();
@@ -160,8 +165,9 @@ void register_simulate_command(CLI::App& app, int& exit_code) {
       ->type_name("DIR")
       ->check(non_empty_path());
   cmd->add_option("--csv", opt.csv_path,
-                  "write one row per step: step,t,newton_iters,residual,energy,min_det_F,max_det_F,"
-                  "min_gap,ceiling_y,wall_ms")
+                  "write one row per step: step,t,newton_iters,residual,incremental_potential,"
+                  "min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,"
+                  "wall_ms (energies in J; docs/outputs.md)")
       ->type_name("FILE")
       ->check(non_empty_path());
   cmd->add_flag("--force", opt.force, "write into a non-empty --obj directory");

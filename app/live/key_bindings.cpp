@@ -18,7 +18,12 @@ constexpr KeyBinding kKeys[] = {
      "screenshot (numbered PNG, path printed)"},
     {GLFW_KEY_R, GLFW_MOD_CONTROL, Action::ToggleRecord, "Ctrl+R",
      "start / stop recording a PNG sequence"},
-    {GLFW_KEY_F, 0, Action::FitView, "F", "fit the view to the scene"},
+    {GLFW_KEY_F, 0, Action::FitView, "F", "frame the bodies (every node)"},
+    {GLFW_KEY_EQUAL, 0, Action::UiScaleUp, "+", "larger text and panels (UI scale)"},
+    {GLFW_KEY_MINUS, 0, Action::UiScaleDown, "-", "smaller text and panels"},
+    {GLFW_KEY_D, 0, Action::CycleDetFPanel, "D", "det F panel: beside / over the picture / hidden"},
+    {GLFW_KEY_C, 0, Action::CycleColorRange, "C",
+     "det F colours: fixed 0.25 to 4 / auto over the run / auto per frame"},
     {GLFW_KEY_ESCAPE, 0, Action::Quit, "Esc", "quit"},
 };
 

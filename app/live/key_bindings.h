@@ -18,6 +18,10 @@ enum class Action {
   Screenshot,
   ToggleRecord,
   FitView,
+  UiScaleUp,
+  UiScaleDown,
+  CycleDetFPanel,
+  CycleColorRange,
   Quit
 };
 

@@ -45,9 +45,45 @@ void on_glfw_error(int, const char* description) {
 // preset); the system reclaims all of it at exit anyway.
 bool g_glfw_initialized = false;
 
-constexpr float kFontSize = 16.0f, kBigFontSize = 40.0f;
+// Set by the GLFW input callbacks below (ImGui's backend chains them): the live window's
+// idle wait ends on any input.
+bool g_input_seen = false;
+void note_input() {
+  g_input_seen = true;
+}
+void on_key(GLFWwindow*, int, int, int, int) {
+  note_input();
+}
+void on_char(GLFWwindow*, unsigned) {
+  note_input();
+}
+void on_cursor(GLFWwindow*, double, double) {
+  note_input();
+}
+void on_button(GLFWwindow*, int, int, int) {
+  note_input();
+}
+void on_scroll(GLFWwindow*, double, double) {
+  note_input();
+}
+void on_size(GLFWwindow*, int, int) {
+  note_input();
+}
+void on_focus(GLFWwindow*, int) {
+  note_input();
+}
+void on_enter(GLFWwindow*, int) {
+  note_input();
+}
+void on_refresh(GLFWwindow*) {  // the window was uncovered: draw it again
+  note_input();
+}
+
+constexpr float kFontSize = 16.0f, kBigFontSize = 40.0f;  // at UI scale 1
 constexpr double kGrabRadiusPixels = 14.0;
-constexpr double kMinEdgeSpacingPixels = 6.0;
+// While paused and idle the window waits for input this long at most (so that Ctrl-C and
+// --frames still end it): no frame is drawn when nothing changes.
+constexpr double kIdleWaitSeconds = 0.25;
 constexpr int kPngCompression = 1;  // fastest zlib level: recording keeps up with the window
 
 std::string no_window_message(const std::string& reason) {
@@ -91,7 +127,8 @@ struct LiveAppImpl {
   std::unique_ptr<LiveController> controller;
   PanelState panel;
   ViewTransform view;
-  bool auto_fit = true;  // refit on resize / panel toggle until the user pans or zooms
+  bool auto_fit = true;     // refit on resize / panel toggle until the user pans or zooms
+  bool fit_bodies = false;  // the last fit framed the bodies (F), not the whole stage
   int fit_scene_index = -1, fit_n_seg = -1;
   // Mouse gestures in progress.
   enum class Drag { None, Pan, Pull } drag = Drag::None;
@@ -103,6 +140,17 @@ struct LiveAppImpl {
   long record_frame = 0;
   std::vector<std::string> messages;
   long frames = 0;
+  // The view: the UI scale the fonts were built at, the det F colour range over the run.
+  float applied_ui_scale = 0.0f;
+  ImGuiStyle base_style;
+  render::ColorRangeTracker color_range;
+  // The pointer: hover highlights only once it has moved (a still pointer under Xvfb
+  // would ring whatever node lies under it in every scripted screenshot).
+  bool pointer_moved = false;
+  bool pointer_seen = false;
+  ImVec2 pointer_start;
+  // Input arrived (GLFW callbacks, chained by ImGui's): frames to draw before idling.
+  int busy_frames = 3;
   // Frames per second over the last half second, for the panel.
   std::chrono::steady_clock::time_point fps_start = std::chrono::steady_clock::now();
   long fps_frames = 0;
@@ -140,17 +188,56 @@ struct LiveAppImpl {
     return ww > 0 ? double(fw) / ww : 1.0;
   }
 
-  // The part of the frame the world shows in and is not under the panel (framebuffer px).
-  void fit_view() {
-    const render::FrameLayout& L = renderer->layout();
-    const double left = panel.visible ? panel.width * pixel_scale() : 0.0;
-    const double x0 = std::max(L.plot.x, left);
-    const double x1 = std::max(L.plot.x + L.plot.w, x0 + 50.0);
-    const render::WorldBox b = render::scene_world_box(controller->settings());
-    view.fit({b.x0, b.y0, b.x1, b.y1}, x0, L.plot.y, x1 - x0, L.plot.h);
+  render::FrameLayout layout() const { return renderer->layout(panel.det_f_panel); }
+  float panel_width() const { return panel.visible ? panel.width * panel.ui_scale : 0.0f; }
+
+  // The part of the frame the world shows in and no panel covers (framebuffer px).
+  render::PixelRect visible_rect() const {
+    const render::FrameLayout L = layout();
+    const double x0 = std::max(L.plot.x, panel_width() * pixel_scale());
+    const double x1 = std::max(L.plot.x + L.plot.w, x0 + 50.0);  // overlaid: to the right edge
+    return {x0, L.plot.y, x1 - x0, L.plot.h};
+  }
+
+  // Fits the view to the scene's stage, or with `bodies` to every node (F).
+  void fit_view(bool bodies = false) {
+    const render::PixelRect r = visible_rect();
+    render::WorldBox b = render::scene_world_box(controller->settings());
+    if (bodies) {
+      const VecX& x = controller->simulation().x;
+      b = {x[0], x[0], x[1], x[1]};
+      for (Eigen::Index i = 0; i + 1 < x.size(); i += 2) {
+        b = {std::min(b.x0, x[i]), std::max(b.x1, x[i]), std::min(b.y0, x[i + 1]),
+             std::max(b.y1, x[i + 1])};
+      }
+      const double pad =
+          0.15 * std::max({b.x1 - b.x0, b.y1 - b.y0, 0.1 * controller->settings().side});
+      b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad};
+    }
+    fit_bodies = bodies;
+    view.fit({b.x0, b.y0, b.x1, b.y1}, r.x, r.y, r.w, r.h);
     fit_scene_index = controller->selected_scene();
     fit_n_seg = controller->settings().n_seg;
   }
+
+  // The UI scale: ImGui's fonts rebuilt at the new size (sharp, not stretched), its
+  // spacing scaled, and the det F panel at its 1280x720 design times the same scale.
+  // Between frames only (fonts cannot change inside one).
+  void apply_ui_scale() {
+    const float scale = std::clamp(panel.ui_scale, kMinUiScale, kMaxUiScale);
+    panel.ui_scale = scale;
+    if (scale != applied_ui_scale) {
+      applied_ui_scale = scale;
+      build_fonts(scale);
+      ImGui::GetStyle() = base_style;
+      ImGui::GetStyle().ScaleAllSizes(scale);
+      if (auto_fit) fit_view(fit_bodies);
+    }
+    const double frame_scale = std::min(renderer->width() / 1280.0, renderer->height() / 720.0);
+    renderer->set_text_scale(scale * pixel_scale() / std::max(frame_scale, 1e-3));
+  }
+
+  void build_fonts(float scale);
 
   void resize_if_needed() {
     int fw = 0, fh = 0;
@@ -162,7 +249,7 @@ struct LiveAppImpl {
       view.width = fw;
       view.height = fh;
       view.center = keep;
-      if (auto_fit) fit_view();
+      if (auto_fit) fit_view(fit_bodies);
     }
   }
 
@@ -180,7 +267,7 @@ struct LiveAppImpl {
         break;
       case Action::TogglePanel:
         panel.visible = !panel.visible;
-        if (auto_fit) fit_view();
+        if (auto_fit) fit_view(fit_bodies);
         break;
       case Action::ToggleHelp:
         panel.show_help = !panel.show_help;
@@ -193,7 +280,21 @@ struct LiveAppImpl {
         break;
       case Action::FitView:
         auto_fit = true;
-        fit_view();
+        fit_view(true);
+        break;
+      case Action::UiScaleUp:
+        panel.ui_scale = std::min(kMaxUiScale, panel.ui_scale + 0.25f);
+        break;
+      case Action::UiScaleDown:
+        panel.ui_scale = std::max(kMinUiScale, panel.ui_scale - 0.25f);
+        break;
+      case Action::CycleDetFPanel:
+        panel.det_f_panel =
+            static_cast<render::PanelMode>((static_cast<int>(panel.det_f_panel) + 1) % 3);
+        break;
+      case Action::CycleColorRange:
+        panel.color_range =
+            static_cast<render::ColorRangeMode>((static_cast<int>(panel.color_range) + 1) % 3);
         break;
       case Action::Quit:
         glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -229,13 +330,25 @@ struct LiveAppImpl {
         if (drag == Drag::Pull) controller->end_pull();
         drag = Drag::None;
       } else if (drag == Drag::Pull) {
-        controller->move_pull(view.to_world(mouse));
+        // The target stays in the visible part of the picture: a body pulled toward a
+        // panel stops at its edge instead of sliding behind it.
+        const render::PixelRect r = visible_rect();
+        const double m = 12.0 * ps;
+        const Vec2 inside(std::clamp(mouse.x(), r.x + m, std::max(r.x + m, r.x + r.w - m)),
+                          std::clamp(mouse.y(), r.y + m, std::max(r.y + m, r.y + r.h - m)));
+        controller->move_pull(view.to_world(inside));
       } else {
         view.pan(mouse.x() - last_mouse.x(), mouse.y() - last_mouse.y());
         auto_fit = false;
       }
       last_mouse = mouse;
       return;
+    }
+    if (mouse_valid) {
+      if (!pointer_seen) pointer_start = io.MousePos;
+      pointer_seen = true;
+      if (io.MousePos.x != pointer_start.x || io.MousePos.y != pointer_start.y)
+        pointer_moved = true;
     }
     if (io.WantCaptureMouse || !mouse_valid) return;
     if (io.MouseWheel != 0.0f) {
@@ -275,7 +388,8 @@ struct LiveAppImpl {
       dl->AddCircle(b, 6.0f, IM_COL32(20, 20, 20, 230), 0, 2.0f);
       return;
     }
-    if (drag != Drag::None || io.WantCaptureMouse || !ImGui::IsMousePosValid()) return;
+    if (drag != Drag::None || io.WantCaptureMouse || !ImGui::IsMousePosValid() || !pointer_moved)
+      return;
     const Vec2 mouse(io.MousePos.x * ps, io.MousePos.y * ps);
     const int node = controller->nearest_node(view.to_world(mouse),
                                               kGrabRadiusPixels * ps / view.pixels_per_metre);
@@ -306,8 +420,8 @@ struct LiveAppImpl {
     start_recording(dir);
   }
 
-  bool start_recording(const std::string& dir) {
-    if (const OutputError e = record_output.open(dir, false)) {
+  bool start_recording(const std::string& dir, bool force = false) {
+    if (const OutputError e = record_output.open(dir, force)) {
       say("invfree: live: cannot record: " + e.message);
       return false;
     }
@@ -380,6 +494,7 @@ struct LiveAppImpl {
   // The ImGui frame: input, the panel and what it asks for, the help overlay, the banners
   // over the picture and the grab markers.
   void build_ui(const Injection* inject) {
+    apply_ui_scale();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     if (inject) inject_input(*inject);
@@ -399,13 +514,11 @@ struct LiveAppImpl {
       fit_view();
     }
     draw_help_overlay(panel);
-    const render::FrameLayout& L = renderer->layout();
+    const render::PixelRect r = visible_rect();
     const double ps = pixel_scale();
-    const float left = panel.visible ? panel.width : 0.0f;
     draw_banners(*controller, panel,
-                 {std::max(left, static_cast<float>(L.plot.x / ps)),
-                  static_cast<float>(L.plot.y / ps), static_cast<float>((L.plot.x + L.plot.w) / ps),
-                  static_cast<float>((L.plot.y + L.plot.h) / ps)});
+                 {static_cast<float>(r.x / ps), static_cast<float>(r.y / ps),
+                  static_cast<float>((r.x + r.w) / ps), static_cast<float>((r.y + r.h) / ps)});
     draw_grab_markers();
     ImGui::Render();
   }
@@ -420,9 +533,11 @@ struct LiveAppImpl {
     render::DrawOptions draw_options;
     draw_options.camera = cam;
     draw_options.framebuffer = 0;
-    // Edges closer than a few pixels only grey the picture (and cost the most triangles).
-    const SceneDef& shown = controller->settings();
-    draw_options.edges = shown.side / shown.n_seg * view.pixels_per_metre >= kMinEdgeSpacingPixels;
+    draw_options.edges = render::edges_legible(controller->settings(), view.pixels_per_metre);
+    draw_options.panel = panel.det_f_panel != render::PanelMode::Hidden;
+    draw_options.panel_overlay = panel.det_f_panel == render::PanelMode::Overlay;
+    color_range.mode = panel.color_range;
+    color_range.apply(controller->stats().min_det_f, controller->stats().max_det_f, &draw_options);
     const render::FrameState state =
         render::capture_frame_state(controller->simulation(), &controller->det_f());
     const long revision = controller->revision();
@@ -471,9 +586,29 @@ struct LiveAppImpl {
     }
   }
 
+  // Nothing will change until input arrives: paused, no drag, no recording, no scripted
+  // frame count, no input in the last few frames (ImGui settles hover and focus in those).
+  bool idle() const {
+    return options.frames <= 0 && !controller->playing() && drag == Drag::None && !recorder &&
+           !screenshot_requested && busy_frames <= 0;
+  }
+
   void frame(const Injection* inject, Image* capture) {
     activate();
-    glfwPollEvents();
+#ifndef __EMSCRIPTEN__  // (the browser calls each frame itself: nothing to wait for)
+    constexpr bool can_wait = true;
+#else
+    constexpr bool can_wait = false;
+#endif
+    if (can_wait && !inject && idle()) {
+      glfwWaitEventsTimeout(kIdleWaitSeconds);
+      if (!g_input_seen && !glfwWindowShouldClose(window)) return;  // nothing new to draw
+    } else {
+      glfwPollEvents();
+    }
+    busy_frames = g_input_seen ? 3 : busy_frames - 1;
+    g_input_seen = false;
+    if (inject) busy_frames = 3;
     resize_if_needed();
     build_ui(inject);
     std::future<void> stepping = draw_picture();
@@ -487,6 +622,33 @@ struct LiveAppImpl {
     count_frame();
   }
 };
+
+// ImGui's fonts at `scale`: the embedded DejaVu Sans (Latin, Greek for mu, lambda, nu, a
+// few symbols) at 16 px and the banners' 40 px, times the scale; the GL texture is
+// rebuilt when the backend is running.
+void LiveAppImpl::build_fonts(float scale) {
+  ImGuiIO& io = ImGui::GetIO();
+  static ImVector<ImWchar> ranges;
+  if (ranges.empty()) {
+    ImFontGlyphRangesBuilder builder;
+    builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
+    builder.AddText("μλνσψΨΔ≤≥·×−²");
+    builder.BuildRanges(&ranges);
+  }
+  io.Fonts->Clear();
+  ImFontConfig cfg;
+  cfg.FontDataOwnedByAtlas = false;  // the bytes live in the executable
+  void* font_data = const_cast<unsigned char*>(invfree_chart_font_begin);
+  const int font_bytes = static_cast<int>(invfree_chart_font_end - invfree_chart_font_begin);
+  io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, std::round(kFontSize * scale), &cfg,
+                                 ranges.Data);
+  panel.big_font = io.Fonts->AddFontFromMemoryTTF(
+      font_data, font_bytes, std::round(kBigFontSize * scale), &cfg, ranges.Data);
+  if (imgui_gl && frames > 0) {  // (the first frame's NewFrame uploads it)
+    ImGui_ImplOpenGL3_DestroyFontsTexture();
+    ImGui_ImplOpenGL3_CreateFontsTexture();
+  }
+}
 
 LiveApp::LiveApp() : impl_(std::make_unique<LiveAppImpl>()) {}
 LiveApp::~LiveApp() = default;
@@ -527,8 +689,7 @@ static std::string create_renderer(LiveAppImpl& a) {
   const auto get_proc = reinterpret_cast<render::GlGetProcAddress>(glfwGetProcAddress);
   std::string e;
   const int samples = a.options.samples > 0 ? a.options.samples : (software ? 1 : 4);
-  a.renderer =
-      render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, samples);
+  a.renderer = render::Renderer::create(get_proc, std::max(fw, 1), std::max(fh, 1), &e, samples);
   return a.renderer ? "" : "the renderer could not start: " + e;
 }
 
@@ -543,27 +704,38 @@ static std::string start_imgui(LiveAppImpl& a) {
   io.LogFilename = nullptr;
   ImGui::StyleColorsDark();
   ImGui::GetStyle().FrameRounding = 3.0f;
-  // Latin, Greek (mu, lambda, nu) and a few symbols, from the embedded DejaVu Sans.
-  static ImVector<ImWchar> ranges;
-  if (ranges.empty()) {
-    ImFontGlyphRangesBuilder builder;
-    builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
-    builder.AddText("μλνσψΨΔ≤≥·×−²");
-    builder.BuildRanges(&ranges);
-  }
-  ImFontConfig cfg;
-  cfg.FontDataOwnedByAtlas = false;  // the bytes live in the executable
-  void* font_data = const_cast<unsigned char*>(invfree_chart_font_begin);
-  const int font_bytes = static_cast<int>(invfree_chart_font_end - invfree_chart_font_begin);
-  io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kFontSize, &cfg, ranges.Data);
-  a.panel.big_font =
-      io.Fonts->AddFontFromMemoryTTF(font_data, font_bytes, kBigFontSize, &cfg, ranges.Data);
+  a.base_style = ImGui::GetStyle();
+  // (The fonts: build_fonts, at the UI scale, before the first frame.)
+  // Ours first: ImGui's backend installs its own and calls these from them.
+  glfwSetKeyCallback(a.window, on_key);
+  glfwSetCharCallback(a.window, on_char);
+  glfwSetCursorPosCallback(a.window, on_cursor);
+  glfwSetMouseButtonCallback(a.window, on_button);
+  glfwSetScrollCallback(a.window, on_scroll);
+  glfwSetFramebufferSizeCallback(a.window, on_size);
+  glfwSetWindowFocusCallback(a.window, on_focus);
+  glfwSetCursorEnterCallback(a.window, on_enter);
+  glfwSetWindowRefreshCallback(a.window, on_refresh);
   if (!ImGui_ImplGlfw_InitForOpenGL(a.window, true)) return "ImGui's GLFW backend could not start";
   a.imgui_glfw = true;
   if (!ImGui_ImplOpenGL3_Init(a.gl.opengl_es ? "#version 300 es" : "#version 330 core"))
     return "ImGui's OpenGL3 backend could not start";
   a.imgui_gl = true;
   return "";
+}
+
+// The UI scale a window starts with: its content scale (HiDPI) times how much larger than
+// 1280x720 it is (never smaller), in steps of 0.25: 1 at 1280x720, 1.5 at 1920x1080.
+static float default_ui_scale(GLFWwindow* window) {
+  float cx = 1.0f, cy = 1.0f;
+#ifndef __EMSCRIPTEN__
+  glfwGetWindowContentScale(window, &cx, &cy);
+#endif
+  int w = 0, h = 0;
+  glfwGetWindowSize(window, &w, &h);
+  const float size = std::max(1.0f, std::min(w / 1280.0f, h / 720.0f));
+  const float s = std::round(std::max(cx, 0.5f) * size * 4.0f) / 4.0f;
+  return std::clamp(s, kMinUiScale, kMaxUiScale);
 }
 
 std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string* error) {
@@ -585,6 +757,10 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   a.controller->set_playing(!options.paused);
   a.controller->steps_per_frame = options.steps_per_frame;
   a.panel.visible = !options.hide_panel;
+  a.panel.det_f_panel = options.det_f_panel;
+  a.panel.color_range = options.color_range;
+  a.panel.ui_scale = options.ui_scale > 0.0f ? options.ui_scale : default_ui_scale(a.window);
+  a.apply_ui_scale();
   a.panel.max_segments = options.max_segments;
   a.view.width = a.renderer->width();
   a.view.height = a.renderer->height();
@@ -592,7 +768,7 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   if (!options.record_dir.empty()) {
     const std::string dir = options.record_dir;
     a.options.record_dir.clear();
-    if (!a.start_recording(dir)) {
+    if (!a.start_recording(dir, options.record_force)) {
       *error = "cannot record to " + dir + " (see above)";
       return nullptr;
     }

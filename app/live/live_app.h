@@ -21,6 +21,8 @@
 
 #include "app/live/live_controller.h"
 #include "app/plot/chart.h"
+#include "app/render/camera.h"
+#include "app/render/view_choices.h"
 
 namespace invfree::live {
 
@@ -30,6 +32,10 @@ namespace invfree::live {
 // can still be loaded from a scene file or --set, or allowed with --max-n-seg.
 constexpr int kDefaultMaxSegments = 112;
 
+// The UI scale's range: the panel's text is 16 px times the scale, and the det F panel is
+// its 1280x720 design times the scale.
+constexpr float kMinUiScale = 0.75f, kMaxUiScale = 3.0f;
+
 struct LiveOptions {
   std::vector<SceneChoice> scenes;  // the scene picker; not empty
   int selected = 0;
@@ -37,10 +43,15 @@ struct LiveOptions {
   std::string screenshot_file;       // write the last frame here (with frames > 0)
   std::string screenshot_dir = ".";  // Ctrl+P / the button: DIR/invfree_NNNN.png
   std::string record_dir;            // record from the first frame on
+  bool record_force = false;         // record_dir may hold files (this run's replace them)
   bool bench = false;                // print frames/s at the end
   bool paused = false;               // start paused
   bool hide_panel = false;           // start with the panel hidden (Tab shows it)
-  bool vsync = true;                 // off for --frames and --bench
+  // 0: from the window (its content scale times its size over 1280x720, at least 1).
+  float ui_scale = 0.0f;
+  render::PanelMode det_f_panel = render::PanelMode::Side;
+  render::ColorRangeMode color_range = render::ColorRangeMode::Fixed;
+  bool vsync = true;  // off for --frames and --bench
   int width = 1280, height = 720;
   int steps_per_frame = 1;
   int max_segments = kDefaultMaxSegments;

@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "energy_report.h"
+
 namespace invfree::live {
 
 LiveController::LiveController(std::vector<SceneChoice> scenes, int selected)
@@ -22,6 +24,8 @@ void LiveController::restart(const SceneDef& scene) {
   last_report_ = StepReport{};
   ms_history_.clear();
   min_det_history_.clear();
+  for (StatsHistory& h : energy_history_) h.clear();
+  gravitational_start_ = energy_report(sim_).gravitational;
   measure();
 }
 
@@ -65,6 +69,10 @@ bool LiveController::step_once() {
   measure();
   ms_history_.push(static_cast<float>(r.wall_ms));
   min_det_history_.push(static_cast<float>(stats_.min_det_f));
+  const EnergyReport e = energy_report(sim_);
+  const double energies[4] = {e.kinetic, e.elastic, e.gravitational - gravitational_start_,
+                              e.contact};
+  for (int k = 0; k < 4; ++k) energy_history_[k].push(static_cast<float>(energies[k]));
   return true;
 }
 

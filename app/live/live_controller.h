@@ -12,6 +12,7 @@
 // good state (core step() leaves it untouched) and sets `banner`.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,12 @@ class LiveController {
   long steps_total() const { return steps_total_; }
   double step_ms_total() const { return step_ms_total_; }
   const StatsHistory& min_det_history() const { return min_det_history_; }
+  // Kinetic, elastic, gravitational and contact energy (J, core/energy_report.h) over the
+  // last steps, in that order (kEnergyNames); gravitational as its change since the
+  // (re)start, so that the exchange between the four shows on one axis.
+  static constexpr const char* kEnergyNames[4] = {"kinetic", "elastic", "gravity (change)",
+                                                  "contact"};
+  const std::array<StatsHistory, 4>& energy_history() const { return energy_history_; }
   // Changes whenever the state or the settings change (a picture of an unchanged
   // revision need not be drawn again).
   long revision() const { return revision_; }
@@ -102,6 +109,9 @@ class LiveController {
   StepReport last_report_;
   bool has_report_ = false;
   StatsHistory ms_history_{400}, min_det_history_{400};
+  double gravitational_start_ = 0.0;
+  std::array<StatsHistory, 4> energy_history_{StatsHistory(400), StatsHistory(400),
+                                              StatsHistory(400), StatsHistory(400)};
   long revision_ = 0;
   long steps_total_ = 0;
   double step_ms_total_ = 0.0;

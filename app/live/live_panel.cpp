@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 
 #include "app/live/key_bindings.h"
@@ -24,41 +25,115 @@ void remember(PanelState& ps, const char* name) {
   ps.rects[name] = {a.x, a.y, b.x, b.y};
 }
 
-// ImGui formats slider labels with printf: a literal '%' must be doubled.
-std::string printf_safe(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    out += c;
-    if (c == '%') out += '%';
+// What a slider did this frame.
+enum class SliderEdit { None, Dragged, Typed };
+
+// A slider of a position t in [0, 1] (the caller maps it to the value) that keeps its
+// value `text` readable: ImGui draws the frame and the handle only, and the text goes to
+// the side of the frame with more room beside the handle. Ctrl+click opens a text field in
+// its place (until Enter, or a click elsewhere, which applies it; Esc cancels): *typed is
+// then the number typed. `label` is ImGui's (shown right of the slider unless "##...").
+SliderEdit readable_slider(PanelState& ps, const char* label, const char* name, float* t,
+                           const std::string& text, double current, double* typed) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (ps.typing == name) {
+    if (ps.typing_frames++ == 0) ImGui::SetKeyboardFocusHere();
+    const std::string field = std::string("##typed_") + name;
+    const bool enter = ImGui::InputDouble(
+        field.c_str(), &ps.typed, 0.0, 0.0, "%.6g",
+        ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+    remember(ps, name);
+    if (enter || ImGui::IsItemDeactivatedAfterEdit()) {
+      ps.typing.clear();
+      *typed = ps.typed;
+      return SliderEdit::Typed;
+    }
+    if (ps.typing_frames > 2 && !ImGui::IsItemActive()) ps.typing.clear();  // Esc, elsewhere
+    return SliderEdit::None;
   }
-  return out;
+  // Ctrl+click on last frame's slider: type (the slider must not see the click and jump).
+  if (auto it = ps.previous_rects.find(name); it != ps.previous_rects.end() && io.KeyCtrl &&
+                                              ImGui::IsMouseClicked(0) &&
+                                              ImGui::IsWindowHovered()) {
+    const WidgetRect& r = it->second;
+    if (io.MousePos.x >= r.x0 && io.MousePos.x < r.x1 && io.MousePos.y >= r.y0 &&
+        io.MousePos.y < r.y1) {
+      ps.typing = name;
+      ps.typed = current;
+      ps.typing_frames = 0;
+      return readable_slider(ps, label, name, t, text, current, typed);
+    }
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(0, 0, 0, 0));  // only the label, below
+  const bool changed = ImGui::SliderFloat(label, t, 0.0f, 1.0f, "", ImGuiSliderFlags_NoInput);
+  ImGui::PopStyleColor();
+  remember(ps, name);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const ImVec2 a = ImGui::GetItemRectMin();
+  const float w = ImGui::CalcItemWidth();
+  const ImVec2 b(a.x + w, ImGui::GetItemRectMax().y);
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  const float grab = std::max(style.GrabMinSize, 1.0f);
+  const float travel = w - 2.0f * style.FramePadding.x - grab;
+  const float grab_x0 = a.x + style.FramePadding.x + std::clamp(*t, 0.0f, 1.0f) * travel;
+  const float left_room = grab_x0 - a.x, right_room = b.x - (grab_x0 + grab);
+  const float x =
+      right_room >= left_room ? b.x - style.FramePadding.x - size.x : a.x + style.FramePadding.x;
+  ImGui::GetWindowDrawList()->AddText(ImVec2(x, a.y + style.FramePadding.y),
+                                      ImGui::GetColorU32(ImGuiCol_Text), text.c_str());
+  // The label (ImGui's text colour was cleared for the whole widget).
+  const char* hidden = std::strstr(label, "##");
+  const char* end = hidden ? hidden : label + std::strlen(label);
+  if (end != label)
+    ImGui::GetWindowDrawList()->AddText(
+        ImVec2(b.x + style.ItemInnerSpacing.x, a.y + style.FramePadding.y),
+        ImGui::GetColorU32(ImGuiCol_Text), label, end);
+  return changed ? SliderEdit::Dragged : SliderEdit::None;
 }
 
-// A log slider over a material parameter: drags a position in [0, 1] (LogSlider) and
-// shows the value itself. Returns true with *value set while it is being moved.
+// A log slider over a material parameter (LogSlider): dragged or typed, *value is the
+// value asked for.
 bool log_slider(PanelState& ps, const char* id, const char* label, const LogSlider& map,
                 double current, double* value) {
   float t = static_cast<float>(map.position(current));
-  const std::string text =
-      printf_safe(std::string(label) + " = " + render::format_si(current, "Pa"));
-  const bool changed =
-      ImGui::SliderFloat(id, &t, 0.0f, 1.0f, text.c_str(), ImGuiSliderFlags_NoInput);
-  remember(ps, id + 2);  // skip the "##"
-  if (changed) *value = map.value(t);
-  return changed;
+  const std::string text = std::string(label) + " = " + render::format_si(current, "Pa");
+  double typed = 0.0;
+  switch (readable_slider(ps, id, id + 2, &t, text, current, &typed)) {
+    case SliderEdit::Dragged:
+      *value = map.value(t);
+      return true;
+    case SliderEdit::Typed:
+      *value = typed;
+      return true;
+    case SliderEdit::None:
+      break;
+  }
+  return false;
 }
 
-// A double slider (ImGui's own, linear or logarithmic) whose Ctrl+click typed value may
-// leave the range: it is then clamped with a note instead of applied.
+// A double slider, linear or logarithmic over `range`, whose typed value may leave the
+// range: it is then clamped with a note.
 bool clamped_slider(LiveController& lc, PanelState& ps, const char* label, const char* name,
                     double* v, Range range, const char* unit, const char* format,
                     bool logarithmic) {
+  const auto position = [&](double x) {
+    if (logarithmic) return LogSlider{range.lo, range.hi}.position(x);
+    return range.hi > range.lo ? std::clamp((x - range.lo) / (range.hi - range.lo), 0.0, 1.0) : 0.0;
+  };
+  float t = static_cast<float>(position(*v));
+  char text[64];
+  std::snprintf(text, sizeof text, format, *v);
   double edit = *v;
-  const ImGuiSliderFlags flags =
-      logarithmic ? ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_NoRoundToFormat : 0;
-  if (!ImGui::SliderScalar(label, ImGuiDataType_Double, &edit, &range.lo, &range.hi, format, flags))
-    return false;
-  remember(ps, name);
+  switch (readable_slider(ps, label, name, &t, text, *v, &edit)) {
+    case SliderEdit::Dragged:
+      edit = logarithmic ? LogSlider{range.lo, range.hi}.value(t)
+                         : (t >= 1.0f ? range.hi : range.lo + t * (range.hi - range.lo));
+      break;
+    case SliderEdit::Typed:
+      break;
+    case SliderEdit::None:
+      return false;
+  }
   const Clamped c = clamp_to_range(edit, *v, range, name, unit);
   if (!c.note.empty()) lc.note = c.note;
   if (c.value == *v) return false;
@@ -74,7 +149,8 @@ void playback_section(LiveController& lc, PanelState& ps, PanelRequests& req) {
   auto tip = [](const char* text) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
   };
-  if (ImGui::Button(lc.playing() ? "Pause" : "Play", ImVec2(62, 0))) lc.set_playing(!lc.playing());
+  if (ImGui::Button(lc.playing() ? "Pause" : "Play", ImVec2(62 * ps.ui_scale, 0)))
+    lc.set_playing(!lc.playing());
   remember(ps, "play");
   tip("Space");
   ImGui::SameLine();
@@ -95,7 +171,6 @@ void playback_section(LiveController& lc, PanelState& ps, PanelRequests& req) {
   if (ImGui::Button(ps.recording ? "Stop rec" : "Record")) req.toggle_record = true;
   remember(ps, "record");
   tip("Ctrl+R: PNG sequence DIR/frame_000000.png, ... (as invfree render)");
-  if (!ps.last_output.empty()) ImGui::TextColored(kDimColor, "%s", ps.last_output.c_str());
 }
 
 void scene_section(LiveController& lc, PanelState& ps) {
@@ -148,7 +223,7 @@ void material_section(LiveController& lc, PanelState& ps) {
   // E and nu: shown beside the sliders, editable (applied on Enter or leaving the field).
   double E, nu;
   young_poisson_from_lame(next.lame, &E, &nu);
-  ImGui::SetNextItemWidth(110);
+  ImGui::SetNextItemWidth(110 * ps.ui_scale);
   double e_in = E;
   const bool e_enter =
       ImGui::InputDouble("E (Pa)", &e_in, 0.0, 0.0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
@@ -160,7 +235,7 @@ void material_section(LiveController& lc, PanelState& ps) {
     apply(lc, next);
   }
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(70);
+  ImGui::SetNextItemWidth(70 * ps.ui_scale);
   double nu_in = nu;
   const bool nu_enter = ImGui::InputDouble("\xce\xbd", &nu_in, 0.0, 0.0, "%.4f",
                                            ImGuiInputTextFlags_EnterReturnsTrue);
@@ -229,11 +304,105 @@ void contact_section(LiveController& lc, PanelState& ps) {
                  kPullStiffnessRange, "N/m", "%.3g", true);
 }
 
+// The top and bottom values of a plot `h` high, beside it (right of the last item).
+void y_range_labels(const char* top, const char* bottom, float width, float h) {
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted(top);
+  ImGui::Dummy(ImVec2(width, h - 2.0f * ImGui::GetTextLineHeightWithSpacing()));
+  ImGui::TextUnformatted(bottom);
+  ImGui::EndGroup();
+}
+
+// A plot with its title above and its y range written beside it (the top and bottom
+// values), so that a change of 0.001 is not read as a steep ramp; the range spans at least
+// `min_span` around the data.
+void labelled_plot(PanelState& ps, const char* name, const char* title,
+                   const std::vector<float>& values, float min_span, const char* format) {
+  ImGui::TextUnformatted(title);
+  float lo = 0.0f, hi = 0.0f;
+  if (!values.empty()) {
+    const auto [a, b] = std::minmax_element(values.begin(), values.end());
+    lo = *a;
+    hi = *b;
+  }
+  if (hi - lo < min_span) {
+    const float mid = 0.5f * (lo + hi);
+    lo = mid - 0.5f * min_span;
+    hi = mid + 0.5f * min_span;
+  }
+  char top[32], bottom[32];
+  std::snprintf(top, sizeof top, format, hi);
+  std::snprintf(bottom, sizeof bottom, format, lo);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float label_w = std::max(ImGui::CalcTextSize(top).x, ImGui::CalcTextSize(bottom).x);
+  const float h = 3.0f * ImGui::GetTextLineHeightWithSpacing();
+  const float w = ImGui::GetContentRegionAvail().x - label_w - style.ItemSpacing.x;
+  const std::string id = std::string("##") + name;
+  ImGui::PlotLines(id.c_str(), values.data(), static_cast<int>(values.size()), 0, nullptr, lo, hi,
+                   ImVec2(w, h));
+  remember(ps, name);
+  y_range_labels(top, bottom, label_w, h);
+}
+
+// Kinetic, elastic, gravitational and contact energy over the last steps on one y axis
+// (its range written beside it), with a coloured legend.
+void energy_plot(const LiveController& lc, PanelState& ps) {
+  static const ImU32 colors[4] = {IM_COL32(240, 170, 40, 255), IM_COL32(90, 170, 255, 255),
+                                  IM_COL32(150, 220, 120, 255), IM_COL32(240, 90, 90, 255)};
+  const auto& history = lc.energy_history();
+  std::vector<float> series[4];
+  float lo = 0.0f, hi = 0.0f;
+  bool any = false;
+  for (int k = 0; k < 4; ++k) {
+    series[k] = history[k].values();
+    for (float v : series[k]) {
+      lo = any ? std::min(lo, v) : v;
+      hi = any ? std::max(hi, v) : v;
+      any = true;
+    }
+  }
+  if (hi - lo < 1e-3f) {
+    lo -= 5e-4f;
+    hi += 5e-4f;
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (k > 0) ImGui::SameLine();
+    ImGui::PushStyleColor(ImGuiCol_Text, colors[k]);
+    ImGui::TextUnformatted(LiveController::kEnergyNames[k]);
+    ImGui::PopStyleColor();
+  }
+  char top[32], bottom[32];
+  std::snprintf(top, sizeof top, "%.3g", hi);
+  std::snprintf(bottom, sizeof bottom, "%.3g", lo);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float label_w = std::max(ImGui::CalcTextSize(top).x, ImGui::CalcTextSize(bottom).x);
+  const float h = 3.0f * ImGui::GetTextLineHeightWithSpacing();
+  const float w = ImGui::GetContentRegionAvail().x - label_w - style.ItemSpacing.x;
+  const ImVec2 a = ImGui::GetCursorScreenPos(), b(a.x + w, a.y + h);
+  ImGui::Dummy(ImVec2(w, h));
+  remember(ps, "energy_plot");
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->AddRectFilled(a, b, ImGui::GetColorU32(ImGuiCol_FrameBg), style.FrameRounding);
+  for (int k = 0; k < 4; ++k) {
+    const auto& v = series[k];
+    if (v.size() < 2) continue;
+    std::vector<ImVec2> points(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      points[i] = ImVec2(a.x + 2.0f + (w - 4.0f) * i / float(v.size() - 1),
+                         b.y - 2.0f - (h - 4.0f) * (v[i] - lo) / (hi - lo));
+    dl->AddPolyline(points.data(), static_cast<int>(points.size()), colors[k], 0,
+                    std::max(1.5f, 1.5f * ps.ui_scale));
+  }
+  y_range_labels(top, bottom, label_w, h);
+}
+
 void stats_section(const LiveController& lc, PanelState& ps) {
   const Simulation& sim = lc.simulation();
   const StateStats& st = lc.stats();
   // (frames/s is in the window title: a screenshot of the same state is then the same picture)
-  ImGui::Text("step %ld    t = %.3f s", sim.step_count, sim.time);
+  ImGui::Text("step %ld    t = %.3f s    %d nodes", sim.step_count, sim.time,
+              sim.mesh.node_count());
   if (lc.has_stepped()) {
     const StepReport& r = lc.last_report();
     ImGui::Text("%.2f ms/step    Newton %d it    residual %.2e m/s", r.wall_ms, r.newton_iterations,
@@ -246,50 +415,86 @@ void stats_section(const LiveController& lc, PanelState& ps) {
   ImGui::Text("det F in [%.4f, %.4f]", st.min_det_f, st.max_det_f);
   ImGui::SameLine();
   ImGui::TextColored(inverted_color, "  %d inverted", st.inverted);
-  ImGui::Text("%d nodes, %d triangles", sim.mesh.node_count(), sim.mesh.triangle_count());
 
-  const float plot_w = ImGui::GetContentRegionAvail().x;
-  char overlay[96];
-  const auto ms = lc.ms_history().values();
-  if (!ms.empty()) {
-    const float mean = std::accumulate(ms.begin(), ms.end(), 0.0f) / ms.size();
-    std::snprintf(overlay, sizeof overlay, "ms/step: last %.2f, mean %.2f, max %.2f", ms.back(),
-                  mean, lc.ms_history().max());
-  } else {
-    std::snprintf(overlay, sizeof overlay, "ms/step");
+  if (ImGui::BeginTabBar("plots")) {
+    if (ImGui::BeginTabItem("energy")) {
+      energy_plot(lc, ps);
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("min det F")) {
+      const auto det = lc.min_det_history().values();
+      char title[64];
+      std::snprintf(title, sizeof title, "min det F, last %zu steps", det.size());
+      labelled_plot(ps, "min_det_plot", title, det, 0.01f, "%.4f");
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("ms/step")) {
+      const auto ms = lc.ms_history().values();
+      char title[96] = "ms per step";
+      if (!ms.empty()) {
+        const float mean = std::accumulate(ms.begin(), ms.end(), 0.0f) / ms.size();
+        std::snprintf(title, sizeof title, "ms/step: last %.2f, mean %.2f", ms.back(), mean);
+      }
+      labelled_plot(ps, "ms_plot", title, ms, 1.0f, "%.2f");
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
   }
-  ImGui::PlotLines("##ms", ms.data(), static_cast<int>(ms.size()), 0, overlay, 0.0f, FLT_MAX,
-                   ImVec2(plot_w, 48));
-  remember(ps, "ms_plot");
-  const auto det = lc.min_det_history().values();
-  std::snprintf(overlay, sizeof overlay, "min det F over the last %zu steps", det.size());
-  ImGui::PlotLines("##mindet", det.data(), static_cast<int>(det.size()), 0, overlay, FLT_MAX,
-                   FLT_MAX, ImVec2(plot_w, 48));
-  remember(ps, "min_det_plot");
+}
+
+// The view: UI scale, where the det F panel goes, the det F colour scale.
+void view_section(PanelState& ps) {
+  // Applied when released (fonts are rebuilt), in steps of 0.25.
+  float scale = ps.ui_scale_edit > 0.0f ? ps.ui_scale_edit : ps.ui_scale;
+  ImGui::SliderFloat("UI scale", &scale, kMinUiScale, kMaxUiScale, "%.2f");
+  remember(ps, "ui_scale");
+  if (ImGui::IsItemActive()) ps.ui_scale_edit = scale;
+  if (ImGui::IsItemDeactivated()) {
+    ps.ui_scale_edit = -1.0f;
+    ps.ui_scale = std::clamp(std::round(scale * 4.0f) / 4.0f, kMinUiScale, kMaxUiScale);
+  } else if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("text and panels larger for the back row (keys + and -)");
+  }
+  // One row: where the det F panel goes, and its colour scale.
+  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
+  const char* modes[] = {"det F panel beside", "det F panel over", "det F panel hidden"};
+  int mode = static_cast<int>(ps.det_f_panel);
+  ImGui::SetNextItemWidth(half);
+  if (ImGui::Combo("##det_f_panel", &mode, modes, 3))
+    ps.det_f_panel = static_cast<render::PanelMode>(mode);
+  remember(ps, "det_f_panel");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the det F panel: beside the picture, over it, or hidden (key D)");
+  ImGui::SameLine();
+  const char* ranges[] = {"colours 0.25 to 4", "colours: auto, run", "colours: auto, frame"};
+  int range = static_cast<int>(ps.color_range);
+  ImGui::SetNextItemWidth(half);
+  if (ImGui::Combo("##colours", &range, ranges, 3))
+    ps.color_range = static_cast<render::ColorRangeMode>(range);
+  remember(ps, "colours");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "det F colour scale: fixed 0.25 to 4, or symmetric in log det F around 1 "
+        "from the run so far or from this frame (key C)");
 }
 
 }  // namespace
 
 PanelRequests draw_panel(LiveController& lc, PanelState& ps) {
   PanelRequests req;
+  ps.previous_rects.swap(ps.rects);
   ps.rects.clear();
   if (!ps.visible) return req;
   const ImGuiViewport* vp = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(vp->WorkPos, ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(ps.width, vp->WorkSize.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(ps.width * ps.ui_scale, vp->WorkSize.y), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(1.0f);  // opaque: the picture's plane lines must not show through
   ImGui::Begin("invfree live", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);
-  ImGui::PushItemWidth(ps.width * 0.55f);
+  ImGui::PushItemWidth(ps.width * ps.ui_scale * 0.55f);
   ImGui::TextColored(kDimColor, "F1: keys and mouse    Tab: hide this panel");
   playback_section(lc, ps, req);
-  if (!lc.note.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, kNoteColor);
-    ImGui::TextWrapped("%s", lc.note.c_str());
-    ImGui::PopStyleColor();
-    remember(ps, "note");
-  }
   ImGui::Separator();
   scene_section(lc, ps);
   ImGui::Separator();
@@ -299,13 +504,15 @@ PanelRequests draw_panel(LiveController& lc, PanelState& ps) {
   ImGui::Separator();
   contact_section(lc, ps);
   ImGui::Separator();
+  view_section(ps);
+  ImGui::Separator();
   stats_section(lc, ps);
   ImGui::PopItemWidth();
   ImGui::End();
   return req;
 }
 
-void draw_banners(const LiveController& lc, const PanelState& ps, const WidgetRect& area) {
+void draw_banners(const LiveController& lc, PanelState& ps, const WidgetRect& area) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const float cx = 0.5f * (area.x0 + area.x1);
   float y = area.y0 + 16.0f;
@@ -327,6 +534,25 @@ void draw_banners(const LiveController& lc, const PanelState& ps, const WidgetRe
     dl->AddRectFilled(a, b, IM_COL32(170, 20, 30, 230), 6.0f);
     dl->AddText(f, ImGui::GetFontSize(), ImVec2(a.x + 12.0f, a.y + 6.0f),
                 IM_COL32(255, 255, 255, 255), lc.banner.c_str(), nullptr, wrap);
+    y = b.y + 8.0f;
+  }
+  if (!lc.note.empty()) {  // yellow, over the picture: the panel's controls stay put
+    const float wrap = std::min(area.x1 - area.x0 - 40.0f, 720.0f * ps.ui_scale);
+    ImFont* f = ImGui::GetFont();
+    const ImVec2 sz = f->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, wrap, lc.note.c_str());
+    const ImVec2 a(cx - 0.5f * sz.x - 12.0f, y), b(cx + 0.5f * sz.x + 12.0f, y + sz.y + 12.0f);
+    dl->AddRectFilled(a, b, IM_COL32(40, 34, 10, 225), 6.0f);
+    dl->AddText(f, ImGui::GetFontSize(), ImVec2(a.x + 12.0f, a.y + 6.0f),
+                ImGui::ColorConvertFloat4ToU32(kNoteColor), lc.note.c_str(), nullptr, wrap);
+    ps.rects["note"] = {a.x, a.y, b.x, b.y};
+  }
+  if (!ps.last_output.empty()) {  // the last screenshot / recording line, at the bottom
+    const float fs = ImGui::GetFontSize();
+    const ImVec2 p(area.x0 + 10.0f, area.y1 - fs - 10.0f);
+    const ImVec2 sz = ImGui::CalcTextSize(ps.last_output.c_str());
+    dl->AddRectFilled(ImVec2(p.x - 6.0f, p.y - 4.0f), ImVec2(p.x + sz.x + 6.0f, p.y + fs + 4.0f),
+                      IM_COL32(30, 30, 30, 200), 4.0f);
+    dl->AddText(p, IM_COL32(235, 235, 235, 255), ps.last_output.c_str());
   }
   if (ps.recording) {
     const ImVec2 p(area.x1 - 90.0f, area.y0 + 24.0f);

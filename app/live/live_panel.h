@@ -3,7 +3,9 @@
 // settings, the grab spring, the statistics with plots of the last steps, and the output
 // buttons. Every edit goes through LiveController::apply with the limits of
 // param_limits.h; a clamped or refused edit shows its note at the top of the panel.
-// Also the F1 help overlay and the PAUSED / failure banners.
+// Also the F1 help overlay and the PAUSED / failure / note banners.
+// Sliders show their value in the half of the slider the handle is not in, and Ctrl+click
+// types a value into any of them.
 // Inputs: the controller and the panel's own state. Output: what the window must do
 // (screenshot, record, fit the view, quit). Call between ImGui::NewFrame and ImGui::Render.
 #pragma once
@@ -13,6 +15,8 @@
 
 #include "app/live/live_app.h"
 #include "app/live/live_controller.h"
+#include "app/render/camera.h"
+#include "app/render/view_choices.h"
 
 struct ImFont;
 
@@ -21,7 +25,19 @@ namespace invfree::live {
 struct PanelState {
   bool visible = true;
   bool show_help = false;
-  float width = 390.0f;  // pixels, at font scale 1
+  float width = 390.0f;  // pixels, at UI scale 1
+  // The view choices the panel edits and the window applies: the UI scale (panel and
+  // det F panel together), where the det F panel goes, the det F colour scale.
+  float ui_scale = 1.0f;
+  float ui_scale_edit = -1.0f;  // the UI scale slider's value while it is being dragged
+  render::PanelMode det_f_panel = render::PanelMode::Side;
+  render::ColorRangeMode color_range = render::ColorRangeMode::Fixed;
+  // Ctrl+click on a slider types its value: the slider's name while typing, the field's
+  // value and the frames it has been open (focus arrives a frame later).
+  std::string typing;
+  double typed = 0.0;
+  int typing_frames = 0;
+  std::map<std::string, WidgetRect> previous_rects;  // last frame's (Ctrl+click targets)
   int max_segments = kDefaultMaxSegments;
   int n_seg_edit = -1;  // the n_seg slider's value while it is being dragged
   bool recording = false;
@@ -39,9 +55,11 @@ struct PanelRequests {
 
 PanelRequests draw_panel(LiveController& lc, PanelState& ps);
 
-// Banners over the picture: PAUSED, the failed step's message, REC. `area` is the part
-// of the window the picture shows in (x0, y0, x1, y1, pixels).
-void draw_banners(const LiveController& lc, const PanelState& ps, const WidgetRect& area);
+// Banners over the picture: PAUSED, the failed step's message, the note of a clamped or
+// refused edit (over the picture, so that it moves no control), REC, and the last output
+// line at the bottom. `area` is the part of the window the picture shows in (x0, y0, x1,
+// y1, pixels).
+void draw_banners(const LiveController& lc, PanelState& ps, const WidgetRect& area);
 
 // The F1 overlay listing every key and mouse gesture (key_bindings.h).
 void draw_help_overlay(PanelState& ps);

@@ -16,7 +16,10 @@ struct LogSlider {
   double value(double t) const {
     t = std::clamp(t, 0.0, 1.0);
     if (zero_at_left && t == 0.0) return 0.0;
-    return std::exp(std::log(lo) + t * (std::log(hi) - std::log(lo)));
+    // The ends exactly (exp(log(hi)) can round past hi, which read as out of range).
+    if (t == 0.0) return lo;
+    if (t == 1.0) return hi;
+    return std::clamp(std::exp(std::log(lo) + t * (std::log(hi) - std::log(lo))), lo, hi);
   }
   double position(double v) const {
     if (!(v > lo)) return 0.0;  // also NaN and, with zero_at_left, 0

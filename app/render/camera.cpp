@@ -5,13 +5,15 @@
 
 namespace invfree::render {
 
-FrameLayout frame_layout(int width, int height, bool panel) {
+FrameLayout frame_layout(int width, int height, PanelMode panel, double text_scale) {
   FrameLayout l;
   l.width = width;
   l.height = height;
-  l.scale = std::min(width / 1280.0, height / 720.0);
-  const double panel_w = panel ? std::round(std::min(290.0 * l.scale, 0.45 * width)) : 0.0;
-  l.plot = {0.0, 0.0, width - panel_w, double(height)};
+  l.scale = std::min(width / 1280.0, height / 720.0) * text_scale;
+  const double panel_w =
+      panel != PanelMode::Hidden ? std::round(std::min(290.0 * l.scale, 0.45 * width)) : 0.0;
+  l.overlay = panel == PanelMode::Overlay;
+  l.plot = {0.0, 0.0, l.overlay ? double(width) : width - panel_w, double(height)};
   l.panel = {width - panel_w, 0.0, panel_w, double(height)};
   return l;
 }

@@ -22,13 +22,24 @@ struct PixelRect {
 
 struct FrameLayout {
   int width = 0, height = 0;
-  double scale = 1.0;  // sizes are designed at 1280x720: min(width/1280, height/720)
-  PixelRect plot;      // the world
-  PixelRect panel;     // text and colour bar
+  // Sizes are designed at 1280x720: min(width/1280, height/720), times the text scale.
+  double scale = 1.0;
+  PixelRect plot;        // the world
+  PixelRect panel;       // text and colour bar
+  bool overlay = false;  // the panel lies over the world's right part (plot: whole frame)
 };
 
-// With `panel` false the plot takes the whole frame.
-FrameLayout frame_layout(int width, int height, bool panel = true);
+// How the side panel shares the frame with the world.
+enum class PanelMode { Side, Overlay, Hidden };
+
+// With `panel` Hidden the plot takes the whole frame; Overlay: the plot takes the whole
+// frame and the panel is drawn over its right part. `text_scale` enlarges the panel and
+// its text (the live window's UI scale; 1 for `invfree render`).
+FrameLayout frame_layout(int width, int height, PanelMode panel = PanelMode::Side,
+                         double text_scale = 1.0);
+inline FrameLayout frame_layout(int width, int height, bool panel) {
+  return frame_layout(width, height, panel ? PanelMode::Side : PanelMode::Hidden);
+}
 
 struct WorldBox {
   double x0 = 0, x1 = 0, y0 = 0, y1 = 0;

@@ -57,6 +57,14 @@ const char* model_display_name(Model m) {
 
 std::vector<ColorBarTick> color_bar_ticks(double range) {
   std::vector<ColorBarTick> ticks;
+  if (range < 2.0) {  // an automatic range (auto_det_f_range): its ends and 1
+    for (const double v : {1.0 / range, 1.0, range}) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.3g", v);
+      ticks.push_back({v, det_f_scale_position(v, range), buf});
+    }
+    return ticks;
+  }
   const int n = static_cast<int>(std::floor(std::log2(range) + 1e-9));
   const int stride = 2 * n + 1 > 9 ? 2 : 1;
   for (int k = -n; k <= n; ++k) {

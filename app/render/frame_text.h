@@ -25,7 +25,7 @@ struct ColorBarTick {
   std::string label;
 };
 // Powers of two from 1/range to range (every other one when there would be more than
-// nine), always including 1.
+// nine), always including 1; below 2 (an automatic range), 1/range, 1 and range.
 std::vector<ColorBarTick> color_bar_ticks(double range);
 
 }  // namespace invfree::render

@@ -129,13 +129,14 @@ void add_plane_fills(FrameVertices& res, const FrameLayout& L, const Camera& cam
 
 // Every triangle filled with its det F colour; inverted triangles last: they overlap their
 // neighbours (they are folded over), and drawn first they would be hidden under them.
-void add_mesh_fills(Shapes& world, const std::vector<Vec2>& p, const FrameState& state) {
+void add_mesh_fills(Shapes& world, const std::vector<Vec2>& p, const FrameState& state,
+                    double range) {
   for (const bool inverted_pass : {false, true}) {
     for (size_t t = 0; t < state.triangles.size(); ++t) {
       const double d = t < state.det_f.size() ? state.det_f[t] : 1.0;
       if (!(d > 0.0) != inverted_pass) continue;
       const auto& tri = state.triangles[t];
-      add_triangle(world, p[tri[0]], p[tri[1]], p[tri[2]], rgba(det_f_color(d)));
+      add_triangle(world, p[tri[0]], p[tri[1]], p[tri[2]], rgba(det_f_color(d, range)));
     }
   }
 }
@@ -169,15 +170,47 @@ void add_strokes(FrameVertices& res, const FrameLayout& L, const Camera& cam,
   }
 }
 
+// A ring of `segments` strokes around `c`.
+void add_ring(Shapes& s, Vec2 c, double radius, double width, Rgba color) {
+  constexpr int kSegments = 24;
+  for (int k = 0; k < kSegments; ++k) {
+    const double a0 = 2.0 * M_PI * k / kSegments, a1 = 2.0 * M_PI * (k + 1) / kSegments;
+    add_segment(s, c + radius * Vec2(std::cos(a0), std::sin(a0)),
+                c + radius * Vec2(std::cos(a1), std::sin(a1)), width, color);
+  }
+}
+
+// A ring around every inverted triangle (det F <= 0), dark under green as in the study's
+// contact sheet: a folded sliver a pixel wide is still found at a glance.
+void add_inverted_rings(Shapes& world, const std::vector<Vec2>& p, const FrameState& state,
+                        double s) {
+  // Around the centroid, a little larger than the triangle but never a ring that hides
+  // the body (a folded sliver can be long).
+  const double min_radius = std::max(5.0, 7.0 * s), max_radius = std::max(8.0, 14.0 * s);
+  for (size_t t = 0; t < state.triangles.size() && t < state.det_f.size(); ++t) {
+    if (state.det_f[t] > 0.0) continue;
+    const auto& tri = state.triangles[t];
+    const Vec2 c = (p[tri[0]] + p[tri[1]] + p[tri[2]]) / 3.0;
+    double r = min_radius;
+    for (int k = 0; k < 3; ++k) r = std::max(r, (p[tri[k]] - c).norm() + 3.0 * s);
+    r = std::min(r, max_radius);
+    add_ring(world, c, r, std::max(2.0, 3.2 * s), kOutline);
+    add_ring(world, c, r, std::max(1.2, 1.8 * s), rgba(kInvertedColor));
+  }
+}
+
 // The side panel: scene, model, Lame parameters, time, step, det F extremes, and the
 // colour bar with its ticks, the min/max markers and the det F <= 0 swatch.
 // Returns the end of its opaque backdrop in res.shapes (what can be drawn without blending).
 size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& state, double det_lo,
-                  double det_hi, int inverted) {
+                  double det_hi, int inverted, const DrawOptions& o) {
   const SceneDef& scene = state.scene;
   const double s = L.scale;
+  const double range = o.color_range;
   Shapes& panel = res.shapes;
-  add_rect(panel, L.panel.x, 0, L.panel.x + L.panel.w, L.height, kPanelBackground);
+  Rgba backdrop = kPanelBackground;
+  if (L.overlay) backdrop.a = 0.86f;
+  add_rect(panel, L.panel.x, 0, L.panel.x + L.panel.w, L.height, backdrop);
   add_rect(panel, L.panel.x, 0, L.panel.x + std::max(1.0, std::round(s)), L.height, kSeparator);
   const size_t backdrop_end = panel.size();
   const double pad = std::round(26.0 * s);
@@ -216,8 +249,10 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   const double swatch_y1 = L.height - pad, swatch_y0 = swatch_y1 - swatch_h;
   const double bar_y1 = std::round(swatch_y0 - 1.6 * small);
   const double bar_title_y = y + 2.0 * body;
-  const double bar_y0 = std::round(bar_title_y + 0.9 * small);
-  res.add_text("det F", kBody, x0, bar_title_y, kInk);
+  const double bar_y0 = std::round(bar_title_y + 1.15 * small + 0.9 * small);
+  // What det F is, and which scale: the fixed one or one chosen from the data.
+  res.add_text(o.color_range_auto ? "det F (auto scale)" : "det F", kBody, x0, bar_title_y, kInk);
+  res.add_text("= area now / area at rest", kSmall, x0, bar_title_y + 1.15 * small, kMutedInk);
   const auto bar_y = [&](double t) { return bar_y1 - 0.5 * (t + 1.0) * (bar_y1 - bar_y0); };
   for (int k = 0; k < 6; ++k) {  // the colormap's seven stops: piecewise linear, exact
     const double t0 = -1.0 + k / 3.0, t1 = -1.0 + (k + 1) / 3.0;
@@ -228,26 +263,51 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   add_rect_outline(panel, bar_x0, bar_y0, bar_x1, bar_y1, thin, kMutedInk);
   const double tick_len = std::round(6.0 * s), label_x = bar_x1 + tick_len + std::round(6.0 * s);
   double label_right = label_x;
-  for (const ColorBarTick& t : color_bar_ticks(kDetFRange)) {
+  for (const ColorBarTick& t : color_bar_ticks(range)) {
     const double ty = std::round(bar_y(t.position));
     add_rect(panel, bar_x1, ty - 0.5 * thin, bar_x1 + tick_len, ty + 0.5 * thin, kMutedInk);
     res.add_text(t.label, kSmall, label_x, ty + 0.36 * small, kInk);
     label_right = std::max(label_right, label_x + res.atlas->text_width(t.label, kSmall));
   }
   const double note_x = label_right + std::round(14.0 * s);
-  res.add_text("stretch", kSmall, note_x, bar_y(1.0) + 0.36 * small, kMutedInk);
-  res.add_text("compression", kSmall, note_x, bar_y(-1.0) + 0.36 * small, kMutedInk);
   add_rect(panel, bar_x0, swatch_y0, bar_x1, swatch_y1, rgba(kInvertedColor));
   add_rect_outline(panel, bar_x0, swatch_y0, bar_x1, swatch_y1, thin, kMutedInk);
-  res.add_text("det F ≤ 0 (inverted)", kSmall, label_x,
-               0.5 * (swatch_y0 + swatch_y1) + 0.36 * small, kInk);
+  res.add_text("det F ≤ 0 (ringed)", kSmall, label_x, 0.5 * (swatch_y0 + swatch_y1) + 0.36 * small,
+               kInk);
   // Markers (a glyph, so antialiased like the text) at the current min and max det F,
-  // beside the swatch when inverted.
-  for (const double d : {det_lo, det_hi}) {
-    const double my = d > 0.0 ? bar_y(det_f_scale_position(d)) : 0.5 * (swatch_y0 + swatch_y1);
-    const double mx = bar_x0 - std::round(2.0 * s) - res.atlas->text_width("▶", kSmall);
-    res.add_text("▶", kSmall, mx, my - res.atlas->ink_middle(kSmall, U'▶'), kInk);
+  // beside the swatch when inverted, each labelled "min 0.842" / "max 1.04" right of the
+  // ticks: the max label at or above the min label, a line apart at least.
+  const auto marker_y = [&](double d) {
+    return d > 0.0 ? bar_y(det_f_scale_position(d, range)) : 0.5 * (swatch_y0 + swatch_y1);
+  };
+  const double line = 1.15 * small;
+  double max_label_y = marker_y(det_hi), min_label_y = marker_y(det_lo);
+  if (min_label_y - max_label_y < line) {
+    const double mid = 0.5 * (min_label_y + max_label_y);
+    max_label_y = mid - 0.5 * line;
+    min_label_y = mid + 0.5 * line;
   }
+  for (const double d : {det_lo, det_hi}) {
+    const double mx = bar_x0 - std::round(2.0 * s) - res.atlas->text_width("▶", kSmall);
+    res.add_text("▶", kSmall, mx, marker_y(d) - res.atlas->ink_middle(kSmall, U'▶'), kInk);
+  }
+  char label[48];
+  std::snprintf(label, sizeof label, "max %.3f", det_hi);
+  res.add_text(label, kSmall, note_x, max_label_y + 0.36 * small, kInk);
+  if (det_lo > 0.0) {  // (an inverted min points at the swatch, which says so)
+    std::snprintf(label, sizeof label, "min %.3f", det_lo);
+    res.add_text(label, kSmall, note_x, min_label_y + 0.36 * small, kInk);
+  } else {
+    min_label_y = -1e9;
+  }
+  // The ends' meaning, where no marker label is.
+  const auto clear_of_labels = [&](double y) {
+    return std::abs(y - max_label_y) >= line && std::abs(y - min_label_y) >= line;
+  };
+  if (clear_of_labels(bar_y(1.0)))
+    res.add_text("stretch", kSmall, note_x, bar_y(1.0) + 0.36 * small, kMutedInk);
+  if (clear_of_labels(bar_y(-1.0)))
+    res.add_text("compression", kSmall, note_x, bar_y(-1.0) + 0.36 * small, kMutedInk);
   return backdrop_end;
 }
 
@@ -266,7 +326,7 @@ void FrameVertices::add_text(std::string_view s, int size, double x, double base
 }
 
 ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, const FrameLayout& L,
-                                 const Camera& cam, bool edges, bool panel) {
+                                 const Camera& cam, const DrawOptions& options) {
   v.shapes.clear();
   v.hatched.clear();
   v.text.clear();
@@ -275,14 +335,16 @@ ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, cons
   std::vector<Vec2> p(static_cast<size_t>(nodes));
   for (int i = 0; i < nodes; ++i) p[i] = cam.to_pixel(Vec2(state.x[2 * i], state.x[2 * i + 1]));
   add_plane_fills(v, L, cam, state);
-  add_mesh_fills(v.shapes, p, state);
+  add_mesh_fills(v.shapes, p, state, options.color_range);
   ShapeRanges ranges;
   ranges.world_fills = v.shapes.size();
-  add_strokes(v, L, cam, state, p, edges);
+  add_strokes(v, L, cam, state, p, options.edges);
+  if (options.ring_inverted) add_inverted_rings(v.shapes, p, state, L.scale);
   ranges.world_end = v.shapes.size();
   const DetFSummary det = summarize_det_f(state);
-  ranges.panel_backdrop =
-      panel ? draw_panel(v, L, state, det.lo, det.hi, det.inverted) : ranges.world_end;
+  ranges.panel_backdrop = options.panel
+                              ? draw_panel(v, L, state, det.lo, det.hi, det.inverted, options)
+                              : ranges.world_end;
   return ranges;
 }
 

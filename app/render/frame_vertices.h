@@ -70,8 +70,9 @@ struct FrameVertices {
 };
 
 // Replaces v's lists with those of `state` seen through `cam` in layout L (the mesh's
-// interior edges when `edges`, the panel when `panel`). Returns where each layer lies.
+// interior edges, the panel, the colour range and the rings of inverted triangles as
+// `options` say). Returns where each layer lies.
 ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, const FrameLayout& L,
-                                 const Camera& cam, bool edges, bool panel);
+                                 const Camera& cam, const DrawOptions& options);
 
 }  // namespace invfree::render

@@ -237,8 +237,21 @@ std::string Renderer::resize(int width, int height) {
   }
   if (res.samples <= 1) res.samples = 1;
 
+  build_fonts();
+
+  gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous_texture));
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_draw));
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
+  return error;
+}
+
+// The font atlas at the sizes of this frame size and text scale; leaves the atlas texture
+// bound (the callers restore their binding).
+void Renderer::build_fonts() {
+  GlResources& res = *gl_;
+  const GlApi& gl = res.gl;
   // Fonts scale with the frame (designed at 1280x720), never below a legible size.
-  const double s = frame_layout(width, height).scale;
+  const double s = layout().scale;
   res.vertices.font_sizes = {std::max(13.0, std::round(31.0 * s)),
                              std::max(11.0, std::round(21.0 * s)),
                              std::max(10.0, std::round(18.0 * s))};
@@ -253,11 +266,15 @@ std::string Renderer::resize(int width, int height) {
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
 
-  gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous_texture));
-  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_draw));
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous_read));
-  return error;
+void Renderer::set_text_scale(double scale) {
+  if (!(scale > 0.0) || scale == text_scale_) return;
+  text_scale_ = scale;
+  GLint previous_texture = 0;
+  gl_->gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &previous_texture);
+  build_fonts();
+  gl_->gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous_texture));
 }
 
 FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f) {
@@ -353,15 +370,25 @@ static void draw_vertices(GlResources& res, const FrameLayout& L, const ShapeRan
   gl.UseProgram(res.fill_program);
   gl.Uniform2f(res.fill_frame_size, float(L.width), float(L.height));
   draw_range(0, r.world_fills);
-  clip_to_plot(false);
-  draw_range(r.world_end, r.panel_backdrop);
-  // The antialiased strokes over the world's fills, and the panel's content.
-  gl.UseProgram(res.shape_program);
-  gl.Uniform4f(res.shape_hatch, 1.0f, 0.0f, 0.0f, 0.0f);
-  gl.Enable(GL_BLEND);
-  clip_to_plot(true);
-  draw_range(r.world_fills, r.world_end);
-  clip_to_plot(false);
+  const auto draw_world_strokes = [&] {  // antialiased, over the world's fills
+    gl.UseProgram(res.shape_program);
+    gl.Uniform4f(res.shape_hatch, 1.0f, 0.0f, 0.0f, 0.0f);
+    gl.Enable(GL_BLEND);
+    clip_to_plot(true);
+    draw_range(r.world_fills, r.world_end);
+    clip_to_plot(false);
+  };
+  if (!L.overlay) {  // the opaque backdrop beside the world, then the world's strokes
+    clip_to_plot(false);
+    draw_range(r.world_end, r.panel_backdrop);
+    draw_world_strokes();
+  } else {  // the world whole, then the translucent backdrop over it
+    draw_world_strokes();
+    gl.UseProgram(res.fill_program);
+    draw_range(r.world_end, r.panel_backdrop);
+    gl.UseProgram(res.shape_program);
+  }
+  // The panel's content.
   draw_range(r.panel_backdrop, res.vertices.shapes.size());
   draw_text_vertices(res, L);
   if (res.draw_fbo) {
@@ -378,10 +405,11 @@ static void draw_vertices(GlResources& res, const FrameLayout& L, const ShapeRan
 
 void Renderer::draw(const FrameState& state, const DrawOptions& options) {
   GlResources& res = *gl_;
-  const FrameLayout L = frame_layout(width_, height_, options.panel);
+  const FrameLayout L =
+      layout(!options.panel ? PanelMode::Hidden
+                            : (options.panel_overlay ? PanelMode::Overlay : PanelMode::Side));
   const Camera cam = options.camera ? *options.camera : scene_camera(state.scene, L);
-  const ShapeRanges ranges =
-      build_frame_vertices(res.vertices, state, L, cam, options.edges, options.panel);
+  const ShapeRanges ranges = build_frame_vertices(res.vertices, state, L, cam, options);
   const SavedGlState saved(res.gl);
   draw_vertices(res, L, ranges, options.framebuffer ? *options.framebuffer : res.resolve_fbo);
   saved.restore(res.gl);

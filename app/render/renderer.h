@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "app/colormap.h"
 #include "app/render/camera.h"
 #include "app/render/gl_proc.h"
 #include "simulation.h"
@@ -63,6 +64,12 @@ FrameState capture_frame_state(const Simulation& sim, const std::vector<double>*
 struct DrawOptions {
   bool edges = true;  // triangle edges (the outline is always drawn)
   bool panel = true;  // the side panel (text, colour bar); false: the world fills the frame
+  bool panel_overlay = false;  // with panel: drawn over the world, which fills the frame
+  // The det F colour scale's range (colormap.h): 1/range..range; `color_range_auto` says on
+  // the bar that it was chosen from the data (auto_det_f_range), not the fixed kDetFRange.
+  double color_range = kDetFRange;
+  bool color_range_auto = false;
+  bool ring_inverted = true;  // a ring around every inverted triangle (det F <= 0)
   // Replaces the scene's fixed camera (a live view's pan and zoom); pixels of this frame.
   std::optional<Camera> camera;
   // Where the frame goes: the renderer's own framebuffer (read_pixels) by default, or this
@@ -93,11 +100,20 @@ class Renderer {
   int height() const { return height_; }
   int samples() const;  // multisampling used (1: none)
   // The layout of a frame with or without the panel.
-  FrameLayout layout(bool panel = true) const { return frame_layout(width(), height(), panel); }
+  FrameLayout layout(bool panel = true) const {
+    return frame_layout(width(), height(), panel ? PanelMode::Side : PanelMode::Hidden,
+                        text_scale_);
+  }
+  FrameLayout layout(PanelMode panel) const {
+    return frame_layout(width(), height(), panel, text_scale_);
+  }
   // The fixed camera of `scene` (for picking: camera.to_world(pixel)).
   Camera camera(const SceneDef& scene, bool panel = true) const {
     return scene_camera(scene, layout(panel));
   }
+  // Enlarges the panel and its text by `scale` (the live window's UI scale; default 1).
+  void set_text_scale(double scale);
+  double text_scale() const { return text_scale_; }
 
   void draw(const FrameState& state, const DrawOptions& options = {});
 
@@ -110,6 +126,8 @@ class Renderer {
   std::unique_ptr<GlResources> gl_;
   int width_ = 0, height_ = 0;
   int max_samples_ = 1;
+  double text_scale_ = 1.0;
+  void build_fonts();
 };
 
 }  // namespace invfree::render

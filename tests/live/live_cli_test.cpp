@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -68,6 +69,33 @@ TEST(LiveCli, BadInputIsRejectedBeforeAnyWindow) {
   for (const std::string& args : cases) {
     const Result r = run_headless(args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
+  }
+}
+
+TEST(LiveCli, OutputPathsAreCheckedBeforeAnyWindow) {
+  // Checked at launch, by render's rules and exit codes (docs/cli.md), not after the run:
+  // without a display these fail on the path, not on the missing window (exit 4).
+  const std::string dir = ::testing::TempDir() + "/live_paths_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir + "/full");
+  { std::ofstream(dir + "/full/frame_000000.png") << "x"; }
+  { std::ofstream(dir + "/a_file") << "x"; }
+  Result r = run_headless("live --record " + dir + "/full");
+  EXPECT_EQ(r.code, 2) << r.err;  // as `render --out` a non-empty directory
+  EXPECT_NE(r.err.find("not empty"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  // --force is accepted (the run then fails only on the missing display).
+  r = run_headless("live --force --record " + dir + "/full");
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_NE(r.err.find("xvfb-run"), std::string::npos) << r.err;
+  // A directory that cannot be made (a file is in the way), for either output.
+  for (const std::string& args : {"live --record " + dir + "/a_file/rec",
+                                  "live --frames 3 --screenshot " + dir + "/a_file/x.png"}) {
+    r = run_headless(args);
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_EQ(r.err.find("xvfb-run"), std::string::npos) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(dir + "/a_file"), std::string::npos) << args << ": " << r.err;
     EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
   }
 }

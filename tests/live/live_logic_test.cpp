@@ -135,6 +135,21 @@ TEST(LiveSlider, LogMappingRoundTripsAndIsLogarithmic) {
   EXPECT_NEAR(z.value(1e-9), 1e2, 1e-3);
 }
 
+TEST(LiveSlider, TheRightEndIsTheRangesEndWithoutANote) {
+  // Clicking the mu slider's right end gave 1.0000000000000002e7 and the note "mu = 1e+07 is
+  // outside [100, 1e+07] Pa; clamped": the end of the range is inside it.
+  const LogSlider mu{kMuRange.lo, kMuRange.hi};
+  EXPECT_EQ(mu.value(1.0), kMuRange.hi);
+  EXPECT_EQ(mu.value(0.0), kMuRange.lo);
+  const MaterialEdit e = edit_mu({1e4, 1e4}, mu.value(1.0));
+  EXPECT_EQ(e.lame.mu, kMuRange.hi);
+  EXPECT_TRUE(e.note.empty()) << e.note;
+  const LogSlider lambda{kLambdaLogMin, kLambdaRange.hi, true};
+  EXPECT_TRUE(edit_lambda({1e4, 1e4}, lambda.value(1.0)).note.empty());
+  for (double t = 0.0; t <= 1.0; t += 1.0 / 64)
+    EXPECT_TRUE(edit_mu({1e4, 1e4}, mu.value(t)).note.empty()) << t;
+}
+
 TEST(LiveStats, HistoryKeepsTheLastValuesOldestFirst) {
   StatsHistory h(4);
   EXPECT_TRUE(h.empty());

@@ -46,13 +46,14 @@ test::RgbImage rgb(const Image& img) {
 }
 
 // The golden check of one `invfree live` run.
-void expect_golden(const std::string& args, const std::string& name) {
+void expect_golden(const std::string& args, const std::string& name, int width = 1280,
+                   int height = 720) {
   const std::string png = temp_dir() + "/" + name + ".png";
   ASSERT_EQ(run("live " + args + " --screenshot " + png), 0) << args;
   test::RgbImage actual;
   ASSERT_TRUE(test::load_png(png, &actual)) << png;
-  EXPECT_EQ(actual.width, 1280);
-  EXPECT_EQ(actual.height, 720);
+  EXPECT_EQ(actual.width, width);
+  EXPECT_EQ(actual.height, height);
   const std::string e = test::check_golden(actual, name, kGoldenDir, temp_dir());
   EXPECT_TRUE(e.empty()) << e;
 }
@@ -65,6 +66,15 @@ TEST(LiveWindow, RunningCompressionMatchesGolden) {
 TEST(LiveWindow, PausedPanelMatchesGolden) {
   // The panel, the PAUSED banner, a stiffer material from --set.
   expect_golden("--scene compress --set material.E=3e5 --frames 3 --paused", "live_panel_paused");
+}
+
+TEST(LiveWindow, LargeUiScaleMatchesGolden) {
+  // The back-row layout: 1920x1080 at UI scale 1.5 (the default there), the det F panel
+  // over the picture with the automatic colour range of the run so far, 1.2 s in.
+  expect_golden(
+      "--scene compress --frames 120 --size 1920x1080 --ui-scale 1.5 --det-f-panel over "
+      "--color-range run",
+      "live_ui_scale_1_5", 1920, 1080);
 }
 
 std::unique_ptr<LiveApp> open_app(LiveOptions o) {
@@ -262,20 +272,28 @@ TEST(LiveWindow, DraggingANodePullsItOnlyWhileHeld) {
   EXPECT_FALSE(app->controller().simulation().pull.on);
 }
 
-TEST(LiveWindow, WheelZoomsAndFRestoresTheView) {
+TEST(LiveWindow, WheelZoomsAndFFramesTheBodies) {
   LiveOptions o;
   o.paused = true;
   o.hide_panel = true;
   auto app = open_app(o);
   ASSERT_TRUE(app);
-  Image fit, zoomed, panned, back;
-  app->frame(nullptr, &fit);
+  Image stage, framed, zoomed, panned, back;
+  app->frame(nullptr, &stage);
+  Injection f;
+  f.keys = {GLFW_KEY_F};
+  app->frame(&f);
+  app->frame(nullptr, &framed);
+  // F frames the bodies (every node), closer than the whole stage: the square grows.
+  const Vec2 c0 = app->to_window(Vec2(-0.5, -0.5)), c1 = app->to_window(Vec2(0.5, 0.5));
+  EXPECT_GT(differing_pixels(stage, framed), 20000);
+  EXPECT_GT(c1.x() - c0.x(), 400.0);  // the 1 m square, in window pixels (720 high)
   Injection in;
   in.x = 500;
   in.y = 400;
   in.wheel = 3.0f;
   app->frame(&in, &zoomed);
-  EXPECT_GT(differing_pixels(fit, zoomed), 20000);
+  EXPECT_GT(differing_pixels(framed, zoomed), 20000);
   Injection drag;
   drag.x = 500;
   drag.y = 400;
@@ -287,11 +305,9 @@ TEST(LiveWindow, WheelZoomsAndFRestoresTheView) {
   app->frame(&drag, &panned);
   EXPECT_GT(differing_pixels(zoomed, panned),
             2000);  // the square moved (the hatching is fixed to the screen)
-  Injection f;
-  f.keys = {GLFW_KEY_F};
   app->frame(&f);
   app->frame(nullptr, &back);
-  EXPECT_TRUE(test::compare_images(rgb(back), rgb(fit)).matches());
+  EXPECT_TRUE(test::compare_images(rgb(back), rgb(framed)).matches());
 }
 
 }  // namespace
@@ -322,6 +338,123 @@ void type_into(LiveApp& app, const std::string& name, const std::string& text) {
   enter.keys = {GLFW_KEY_ENTER};
   app.frame(&enter);
   app.frame(&in);
+}
+
+TEST(LiveWindow, APulledBodyStaysOutOfThePanels) {
+  // Dragging a node over the ImGui panel (left) or the det F panel (right): the spring's
+  // target stops at the visible picture's edge, so the body cannot slide behind a panel.
+  LiveOptions o;
+  o.paused = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  app->frame();
+  const float panel_right = app->widget_rects().at("mu").x1;  // inside the ImGui panel
+  const SceneDef& s = app->controller().settings();
+  const int node = s.n_seg * (s.n_seg + 1);  // top left corner
+  const Vec2 p = app->to_window(app->controller().simulation().x.segment<2>(2 * node));
+  Injection in;
+  in.x = static_cast<float>(p.x());
+  in.y = static_cast<float>(p.y());
+  app->frame(&in);
+  in.down[0] = true;
+  app->frame(&in);
+  ASSERT_TRUE(app->controller().pulling());
+  in.x = 20.0f;  // far into the ImGui panel
+  app->frame(&in);
+  EXPECT_GT(app->to_window(app->controller().pull_target()).x(), panel_right);
+  in.x = 1270.0f;  // into the det F panel (the right 290 pixels at 1280x720)
+  app->frame(&in);
+  EXPECT_LT(app->to_window(app->controller().pull_target()).x(), 1280.0 - 290.0);
+  in.down[0] = false;
+  app->frame(&in);
+}
+
+TEST(LiveWindow, NoHoverRingUntilThePointerMoves) {
+  // A pointer resting on a node from the first frame on (Xvfb's, in a scripted screenshot)
+  // rings nothing: the picture equals one with the pointer resting on no node. Once it
+  // moves, the node under it is ringed.
+  LiveOptions o;
+  o.paused = true;
+  o.hide_panel = true;
+  auto on_node = open_app(o);
+  auto elsewhere = open_app(o);
+  ASSERT_TRUE(on_node && elsewhere);
+  const Vec2 p = on_node->to_window(on_node->controller().simulation().x.segment<2>(0));
+  Injection still;
+  still.x = static_cast<float>(p.x());
+  still.y = static_cast<float>(p.y());
+  Injection corner;
+  corner.x = corner.y = 3.0f;
+  Image resting, reference, ringed;
+  for (int k = 0; k < 3; ++k) {
+    on_node->frame(&still, &resting);
+    elsewhere->frame(&corner, &reference);
+  }
+  EXPECT_EQ(differing_pixels(resting, reference), 0);
+  Injection moved = still;
+  moved.x += 2.0f;
+  on_node->frame(&moved);
+  on_node->frame(&moved, &ringed);
+  EXPECT_GT(differing_pixels(resting, ringed), 30);
+}
+
+TEST(LiveWindow, ANoteMovesNoControl) {
+  LiveOptions o;
+  o.paused = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  app->frame();
+  app->frame();
+  const std::map<std::string, WidgetRect> before = app->widget_rects();
+  type_into(*app, "nu", "0.7");  // clamped: a note
+  ASSERT_FALSE(app->controller().note.empty());
+  app->frame();
+  ASSERT_TRUE(app->widget_rects().count("note"));
+  for (const auto& [name, r] : before) {
+    ASSERT_TRUE(app->widget_rects().count(name)) << name;
+    const WidgetRect& now = app->widget_rects().at(name);
+    EXPECT_EQ(now.y0, r.y0) << name;
+    EXPECT_EQ(now.x0, r.x0) << name;
+  }
+  // The note lies over the picture, right of the panel.
+  EXPECT_GE(app->widget_rects().at("note").x0, before.at("mu").x1);
+}
+
+TEST(LiveWindow, CtrlClickTypesMuAndLambda) {
+  LiveOptions o;
+  o.paused = true;
+  auto app = open_app(o);
+  ASSERT_TRUE(app);
+  app->frame();
+  app->frame();
+  for (const auto& [name, value] : {std::pair<std::string, double>{"mu", 2e6}, {"lambda", 0.0}}) {
+    const WidgetRect r = app->widget_rects().at(name);
+    Injection in;
+    in.x = r.x0 + 0.8f * (r.x1 - r.x0);  // far from the handle: a plain click would move it
+    in.y = 0.5f * (r.y0 + r.y1);
+    in.ctrl = true;
+    app->frame(&in);
+    in.down[0] = true;
+    app->frame(&in);
+    in.down[0] = false;
+    app->frame(&in);
+    in.ctrl = false;
+    app->frame(&in);
+    Injection select = in;
+    select.keys = {GLFW_KEY_A};
+    select.ctrl = true;
+    app->frame(&select);
+    Injection typed = in;
+    typed.text = name == "mu" ? "2e6" : "0";
+    app->frame(&typed);
+    Injection enter = in;
+    enter.keys = {GLFW_KEY_ENTER};
+    app->frame(&enter);
+    app->frame(&in);
+    const Lame lame = app->controller().settings().lame;
+    EXPECT_EQ(name == "mu" ? lame.mu : lame.lambda, value) << name;
+    EXPECT_TRUE(app->controller().note.empty()) << app->controller().note;
+  }
 }
 
 TEST(LiveWindow, TypedInvalidPoissonRatioIsClampedWithANote) {

@@ -68,13 +68,18 @@ TEST(MovieNumbers, FrameRateFlagMustBeFiniteAndInRange) {
 TEST(MovieNumbers, RealTimeFrameRateMustBeInRange) {
   if (!have_ffmpeg()) GTEST_SKIP() << "ffmpeg is not installed (--mp4 is refused before this)";
   const std::string why = "frame rate 1 / (h * steps-per-frame)";
-  expect_refused({"--mp4", "--set", "time.h=1e-12"}, why + " = 1e+12 frames/s");
-  expect_refused({"--mp4", "--set", "time.h=1e-6"}, why + " = 1e+06 frames/s");
+  expect_refused({"--mp4", "--set", "time.h=1e-12", "--steps-per-frame", "1"},
+                 why + " = 1e+12 frames/s");
+  expect_refused({"--mp4", "--set", "time.h=1e-6", "--steps-per-frame", "1"},
+                 why + " = 1e+06 frames/s");
+  // The lecture default's steps per frame (near 30 frames/s) stop at the flag's maximum.
+  expect_refused({"--mp4", "--set", "time.h=1e-12"}, why + " = 1e+06 frames/s");
   expect_refused({"--mp4", "--set", "time.h=0.5", "--steps-per-frame", "100"},
                  why + " = 0.02 frames/s");
   // An explicit --fps makes any h fine, and without --mp4 the rate does not matter.
   for (const std::vector<std::string>& ok :
        {std::vector<std::string>{"--mp4", "--set", "time.h=1e-6", "--fps", "30"},
+        std::vector<std::string>{"--mp4", "--set", "time.h=1e-6"},  // 33,333 steps/frame
         std::vector<std::string>{"--set", "time.h=1e-6"}}) {
     const std::string dir = fresh_dir("movie_ok") + "/f";
     std::vector<std::string> args = {"render", "--frames", "3", "--size", "64x64", "--out", dir};

@@ -120,6 +120,32 @@ TEST(RenderCli, Mp4WithFfmpegHasEvenDimensions) {
   EXPECT_NE(info.find("nb_frames=4"), std::string::npos) << info;
 }
 
+TEST(RenderCli, LectureDefaultPlaysInRealTimeNearThirtyFramesAndGifToo) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "ffmpeg is not installed";
+  // h = 0.01 s: 3 steps per frame play in real time at 33.3 frames/s.
+  const std::string dir = fresh_dir("lecture");
+  const CommandResult r = run("render --frames 5 --size 160x90 --mp4 --gif --out " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("12 steps, t = 0.120 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("movie: 33.33 frames/s, 3 step(s)/frame, encoded in"), std::string::npos)
+      << r.out;
+  ASSERT_TRUE(fs::exists(dir + "/movie.mp4"));
+  ASSERT_TRUE(fs::exists(dir + "/movie.gif"));
+  const std::string probe = dir + "/probe.txt";
+  ASSERT_EQ(std::system(("ffprobe -v error -select_streams v:0 -show_entries stream=codec_name "
+                         "-of default=noprint_wrappers=1 " +
+                         dir + "/movie.gif >" + probe)
+                            .c_str()),
+            0);
+  EXPECT_NE(slurp(probe).find("codec_name=gif"), std::string::npos) << slurp(probe);
+  // Given steps per frame are kept.
+  const std::string dir1 = fresh_dir("lecture1");
+  const CommandResult r1 =
+      run("render --frames 3 --size 160x90 --mp4 --steps-per-frame 1 --out " + dir1);
+  EXPECT_NE(r1.out.find("movie: 100 frames/s, 1 step(s)/frame"), std::string::npos) << r1.out;
+}
+
 TEST(RenderCli, FailedStepKeepsTheFramesBeforeItAndExitsThree) {
   const std::string dir = fresh_dir("fail");
   const CommandResult r = run(

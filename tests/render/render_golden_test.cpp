@@ -137,6 +137,26 @@ TEST(RenderGolden, LinearElasticityInverted) {
   expect_golden(sim, "linear_inverted");
 }
 
+TEST(RenderGolden, InvertedTrianglesAreRinged) {
+  // Rings mark every inverted triangle (and only those): with none, the option changes no
+  // pixel; with some, it adds dark and green ring pixels around each.
+  render::Renderer& r = renderer();
+  const auto draw = [&](const Simulation& sim, bool rings) {
+    render::DrawOptions o;
+    o.ring_inverted = rings;
+    r.draw(render::capture_frame_state(sim), o);
+    std::vector<std::uint8_t> rgba;
+    r.read_pixels(&rgba);
+    return test::from_gl_pixels(rgba, r.width(), r.height());
+  };
+  Simulation sim = make_simulation(scene("compress", {"material.model=linear", "material.E=1e4",
+                                                      "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
+  EXPECT_EQ(test::compare_images(draw(sim, true), draw(sim, false)).differing, 0);
+  run_to(sim, 23);
+  const test::ImageDiff d = test::compare_images(draw(sim, true), draw(sim, false));
+  EXPECT_GT(d.differing, 2000);
+}
+
 TEST(RenderGolden, SameStateSamePixels) {
   // Nothing in the picture depends on the wall clock or on what was drawn before.
   Simulation a = make_simulation(scene("compress"));

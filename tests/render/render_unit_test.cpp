@@ -10,12 +10,86 @@
 #include "app/render/frame_writer.h"
 #include "app/render/shader_sources.h"
 #include "app/render/text_atlas.h"
+#include "app/render/view_choices.h"
 #include "scene/scene.h"
 #include "scene_io/builtin_scenes.h"
 #include "tests/render/image_compare.h"
 
 namespace invfree::render {
 namespace {
+
+TEST(ColorRange, AutoRangeIsTheSmallestRoundRangeHoldingTheData) {
+  // Symmetric in log det F around 1: 1/range..range holds [lo, hi].
+  EXPECT_EQ(auto_det_f_range(1.0, 1.0), 1.01);
+  EXPECT_EQ(auto_det_f_range(0.99, 1.004), 1.02);  // 1/0.99 = 1.0101 > 1.01
+  EXPECT_EQ(auto_det_f_range(0.84, 1.04), 1.2);    // compress's first second
+  EXPECT_EQ(auto_det_f_range(0.5, 1.1), 2.0);
+  EXPECT_EQ(auto_det_f_range(0.2, 1.0), 8.0);
+  EXPECT_EQ(auto_det_f_range(-0.3, 1.3), 1.5);  // inverted (green anyway) is left out
+  EXPECT_EQ(auto_det_f_range(1e-9, 1.0), 1024.0);
+  for (double lo : {0.3, 0.7, 0.95, 0.999})
+    for (double hi : {1.0, 1.01, 1.3, 3.0}) {
+      const double r = auto_det_f_range(lo, hi);
+      EXPECT_LE(1.0 / r, lo * (1 + 1e-12));
+      EXPECT_GE(r, hi * (1 - 1e-12));
+    }
+  // A small range's bar: its ends and 1, labelled.
+  const auto ticks = color_bar_ticks(1.05);
+  ASSERT_EQ(ticks.size(), 3u);
+  EXPECT_EQ(ticks[0].label, "0.952");
+  EXPECT_EQ(ticks[1].label, "1");
+  EXPECT_EQ(ticks[2].label, "1.05");
+  EXPECT_EQ(ticks[0].position, -1.0);
+  EXPECT_EQ(ticks[2].position, 1.0);
+}
+
+TEST(ColorRange, RunModeOnlyWidensFrameModeFollowsTheFrame) {
+  ColorRangeTracker run{ColorRangeMode::Run}, frame{ColorRangeMode::Frame},
+      fixed{ColorRangeMode::Fixed};
+  DrawOptions o;
+  run.apply(0.8, 1.0, &o);
+  EXPECT_EQ(o.color_range, 1.5);
+  EXPECT_TRUE(o.color_range_auto);
+  run.apply(0.99, 1.0, &o);
+  EXPECT_EQ(o.color_range, 1.5);  // the run so far
+  frame.apply(0.8, 1.0, &o);
+  frame.apply(0.99, 1.0, &o);
+  EXPECT_EQ(o.color_range, 1.02);
+  fixed.apply(0.99, 1.0, &o);
+  EXPECT_EQ(o.color_range, kDetFRange);
+  EXPECT_FALSE(o.color_range_auto);
+  EXPECT_EQ(parse_color_range_mode("run"), ColorRangeMode::Run);
+  EXPECT_FALSE(parse_color_range_mode("auto"));
+}
+
+TEST(FollowCamera, FramesTheBodyAndNeverJumps) {
+  // A square falling 2 m and squashing: every node stays in the plot, and the camera's
+  // scale and centre change by a bounded fraction per frame.
+  const PixelRect plot{0, 0, 990, 720};
+  FollowCamera follow;
+  FrameState st;
+  st.scene.side = 1.0;
+  Camera last;
+  for (int f = 0; f < 200; ++f) {
+    const double drop = std::min(2.0, 0.02 * f), squash = f < 100 ? 1.0 : 1.0 - 0.004 * (f - 100);
+    st.x.resize(8);
+    const double hw = 0.5 / squash, hh = 0.5 * squash;
+    st.x << -hw, -hh - drop, hw, -hh - drop, hw, hh - drop, -hw, hh - drop;
+    const Camera c = follow.next(st, plot);
+    for (int i = 0; i < 4; ++i) {
+      const Vec2 p = c.to_pixel(st.x.segment<2>(2 * i));
+      EXPECT_GE(p.x(), plot.x);
+      EXPECT_LE(p.x(), plot.x + plot.w);
+      EXPECT_GE(p.y(), plot.y);
+      EXPECT_LE(p.y(), plot.y + plot.h);
+    }
+    if (f > 0) {
+      EXPECT_LT(std::abs(c.pixels_per_metre / last.pixels_per_metre - 1.0), 0.1) << f;
+      EXPECT_LT((c.origin - last.origin).norm(), 60.0) << f;
+    }
+    last = c;
+  }
+}
 
 TEST(FrameText, SiPrefixesWithThreeSignificantDigits) {
   const Lame l = lame_from_young_poisson(1e5, 0.4);  // the demo's: 35714 and 142857 Pa

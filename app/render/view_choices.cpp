@@ -1,0 +1,95 @@
+#include "app/render/view_choices.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/colormap.h"
+
+namespace invfree::render {
+
+std::optional<ColorRangeMode> parse_color_range_mode(const std::string& name) {
+  if (name == "fixed") return ColorRangeMode::Fixed;
+  if (name == "run") return ColorRangeMode::Run;
+  if (name == "frame") return ColorRangeMode::Frame;
+  return std::nullopt;
+}
+
+const char* color_range_mode_name(ColorRangeMode mode) {
+  switch (mode) {
+    case ColorRangeMode::Fixed:
+      return "fixed";
+    case ColorRangeMode::Run:
+      return "run";
+    case ColorRangeMode::Frame:
+      return "frame";
+  }
+  return "?";
+}
+
+void ColorRangeTracker::apply(double lo, double hi, DrawOptions* options) {
+  if (lo > 0.0) run_lo = std::min(run_lo, lo);
+  run_hi = std::max(run_hi, hi);
+  options->color_range_auto = mode != ColorRangeMode::Fixed;
+  switch (mode) {
+    case ColorRangeMode::Fixed:
+      options->color_range = kDetFRange;
+      break;
+    case ColorRangeMode::Run:
+      options->color_range = auto_det_f_range(run_lo, run_hi);
+      break;
+    case ColorRangeMode::Frame:
+      options->color_range = auto_det_f_range(lo, hi);
+      break;
+  }
+}
+
+namespace {
+
+// The bodies' bounding box (every node).
+WorldBox node_box(const VecX& x) {
+  WorldBox b{x[0], x[0], x[1], x[1]};
+  for (Eigen::Index i = 0; i + 1 < x.size(); i += 2) {
+    b.x0 = std::min(b.x0, x[i]);
+    b.x1 = std::max(b.x1, x[i]);
+    b.y0 = std::min(b.y0, x[i + 1]);
+    b.y1 = std::max(b.y1, x[i + 1]);
+  }
+  return b;
+}
+
+WorldBox padded(const WorldBox& b, double pad) {
+  return {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad};
+}
+
+}  // namespace
+
+Camera FollowCamera::next(const FrameState& state, const PixelRect& plot) {
+  if (state.x.size() < 2) return last.value_or(Camera{});
+  const WorldBox body = node_box(state.x);
+  const double size = std::max({body.x1 - body.x0, body.y1 - body.y0, 0.2 * state.scene.side});
+  // Aim: the bodies with a third of their size around them (the planes show when near).
+  const Camera target = fit_camera(padded(body, 0.35 * size), plot);
+  Camera c = target;
+  if (last) {
+    constexpr double kRate = 0.08;  // of the way to the target per frame
+    c.pixels_per_metre =
+        last->pixels_per_metre + kRate * (target.pixels_per_metre - last->pixels_per_metre);
+    // Centre (world point at the plot's centre) eased the same way.
+    const Vec2 mid(plot.x + 0.5 * plot.w, plot.y + 0.5 * plot.h);
+    const Vec2 last_centre = last->to_world(mid), target_centre = target.to_world(mid);
+    const Vec2 centre = last_centre + kRate * (target_centre - last_centre);
+    // Never so close that a node leaves the picture: the bodies plus a small margin fit.
+    const WorldBox must = padded(body, 0.05 * size);
+    const double fit = fit_camera(must, plot).pixels_per_metre;
+    c.pixels_per_metre = std::min(c.pixels_per_metre, fit);
+    const double half_w = 0.5 * plot.w / c.pixels_per_metre,
+                 half_h = 0.5 * plot.h / c.pixels_per_metre;
+    const double cx = std::clamp(centre.x(), must.x1 - half_w, must.x0 + half_w);
+    const double cy = std::clamp(centre.y(), must.y1 - half_h, must.y0 + half_h);
+    c.origin = Vec2(mid.x() - c.pixels_per_metre * cx, mid.y() + c.pixels_per_metre * cy);
+  }
+  last = c;
+  return c;
+}
+
+}  // namespace invfree::render

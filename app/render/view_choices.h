@@ -1,0 +1,45 @@
+// The picture choices shared by `invfree render` and `invfree live` that depend on the
+// frames shown so far: the det F colour scale's range (fixed 0.25..4, or automatic from
+// the run so far or from each frame), the camera that follows the bodies over a movie,
+// and when the mesh's edges are too dense to draw.
+// Inputs: each frame's state (in order) and its layout. Outputs: DrawOptions fields.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "app/render/camera.h"
+#include "app/render/renderer.h"
+
+namespace invfree::render {
+
+// Edges closer than this many pixels only grey the picture (a fine mesh turns into moire)
+// and cost the most triangles: they are left out, the outline kept.
+constexpr double kMinEdgeSpacingPixels = 6.0;
+inline bool edges_legible(const SceneDef& scene, double pixels_per_metre) {
+  return scene.side / scene.n_seg * pixels_per_metre >= kMinEdgeSpacingPixels;
+}
+
+// The colour scale's range: Fixed (kDetFRange), Run (auto_det_f_range over every frame so
+// far: it only widens), Frame (auto_det_f_range of the frame alone).
+enum class ColorRangeMode { Fixed, Run, Frame };
+std::optional<ColorRangeMode> parse_color_range_mode(const std::string& name);
+const char* color_range_mode_name(ColorRangeMode mode);
+
+struct ColorRangeTracker {
+  ColorRangeMode mode = ColorRangeMode::Fixed;
+  double run_lo = 1.0, run_hi = 1.0;  // det F extremes seen so far (positive ones)
+  // Takes the frame's det F extremes; sets options->color_range and color_range_auto.
+  void apply(double lo, double hi, DrawOptions* options);
+  void reset() { run_lo = run_hi = 1.0; }
+};
+
+// A camera that keeps the bodies framed over a movie: each frame it moves a fraction of
+// the way toward the bodies' padded bounding box (so it never jumps), and never less than
+// what keeps every node inside the plot area (so no body leaves the picture).
+struct FollowCamera {
+  std::optional<Camera> last;
+  Camera next(const FrameState& state, const PixelRect& plot);
+};
+
+}  // namespace invfree::render
