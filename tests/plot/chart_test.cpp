@@ -258,6 +258,7 @@ TEST(StudyChart, MeshPanelIsAgainstNSegAndSaysWhenItsRangeIsNarrow) {
   ASSERT_EQ(mesh.series.size(), 1u);
   EXPECT_EQ(mesh.series[0].x, (std::vector<double>{8.0, 16.0}));
   EXPECT_NE(mesh.x_label.find("n_seg"), std::string::npos);
+  EXPECT_FALSE(mesh.log_x) << "n_seg on a linear axis";
   EXPECT_NE(mesh.title.find("narrow y range"), std::string::npos) << mesh.title;
   r.rows.back().error = 0.01;  // a factor of 9.4: not narrow
   mesh = sweeps_panels(r)[1];
