@@ -26,6 +26,7 @@
 #include "app/plot/chart.h"
 #include "app/plot/loglog_fit.h"
 #include "app/scene_options.h"
+#include "app/sweep_command.h"
 #include "linalg/parallel.h"
 #include "scene_io/builtin_scenes.h"
 #include "simulation.h"
@@ -41,6 +42,8 @@ struct BenchOptions {
   std::string out_dir = "bench";
   int threads = 0;
   double fps = 0.0;
+  ChartFormat format = ChartFormat::Png;
+  bool force = false;
 };
 
 struct BenchRow {
@@ -193,7 +196,7 @@ bool is_reference_scene(SceneDef scene) {
   return scene == *compress;
 }
 
-Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bool reference) {
+ChartSpec chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bool reference) {
   ChartSpec spec;
   spec.title = "invfree bench: " + scene_name + ", time per step against unknowns";
   spec.x_label = "degrees of freedom (2 x nodes + ceiling)";
@@ -244,7 +247,7 @@ Image chart(const std::vector<BenchRow>& rows, const std::string& scene_name, bo
     spec.notes.push_back("solver: " + rows.back().solver + ", " + std::to_string(thread_count()) +
                          " threads, " + std::to_string(rows.back().steps) + " steps per size");
   }
-  return render_chart(spec);
+  return spec;
 }
 
 // The largest n_seg in (lo, hi) whose median step fits in `budget_ms`, knowing lo fits
@@ -323,8 +326,9 @@ int run_bench(const BenchOptions& opt) {
     if (auto e = validate_scene(s); !e.empty())
       return fail(exit_code::kBadInput, "n_seg " + std::to_string(n) + ": " + e);
   }
-  if (auto e = check_output_files({opt.out_dir + "/bench.csv", opt.out_dir + "/bench.png"},
-                                  opt.scene.input_files()))
+  const std::string csv_path = opt.out_dir + "/bench.csv",
+                    chart_path = opt.out_dir + "/bench." + chart_extension(opt.format);
+  if (auto e = check_output_files({csv_path, chart_path}, opt.scene.input_files(), opt.force))
     return fail(e.exit_code, e.message);
   if (opt.threads > 0) set_thread_count(opt.threads);
 
@@ -343,16 +347,17 @@ int run_bench(const BenchOptions& opt) {
   }
   // Whatever completed is written, also after a failure or Ctrl-C.
   if (!rows.empty()) {
-    if (auto e = write_file_atomically(opt.out_dir + "/bench.csv", csv_text(rows)); !e.empty())
+    if (auto e = write_file_atomically(csv_path, csv_text(rows)); !e.empty())
       return fail(exit_code::kOutputFailed, e);
-    if (auto e = write_png(opt.out_dir + "/bench.png",
-                           chart(rows, scene->name, is_reference_scene(*scene)));
+    if (auto e = write_canvas(
+            chart_path,
+            *chart_canvas({chart(rows, scene->name, is_reference_scene(*scene))}, opt.format));
         !e.empty())
       return fail(exit_code::kOutputFailed, e);
     int from_n = 0;
     if (const LogLogFit fit = fit_cost(rows, &from_n); fit.ok())
       std::printf("fitted slope: ms per step ~ DOF^%.3f over n_seg >= %d\n", fit.slope, from_n);
-    std::printf("wrote %s/bench.csv and %s/bench.png\n", opt.out_dir.c_str(), opt.out_dir.c_str());
+    std::printf("wrote %s and %s\n", csv_path.c_str(), chart_path.c_str());
   }
   if (code != exit_code::kOk) return fail(code, error);
 
@@ -374,6 +379,8 @@ void register_bench_command(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
   add_output_directory_option(cmd, opt.out_dir, "output directory for bench.csv and bench.png");
+  add_chart_format_option(cmd, opt.format);
+  add_force_option(cmd, opt.force, "overwrite bench.csv and the chart if they exist");
   cmd->add_option("--threads", opt.threads, "worker threads (default: every core)")
       ->check(CLI::Range(1, 256));
   cmd->add_option("--fps", opt.fps,

@@ -1,8 +1,10 @@
 #include "app/command.h"
 
 #include <cstdio>
+#include <filesystem>
 
 #include "app/cli_checks.h"
+#include "app/exit_codes.h"
 #include "app/output_files.h"
 
 namespace invfree {
@@ -25,6 +27,23 @@ OutputError check_output_files(std::initializer_list<std::string> paths,
   for (const std::string& p : paths)
     if (OutputError e = check_output_file(p, inputs)) return e;
   return {};
+}
+
+OutputError check_output_files(std::initializer_list<std::string> paths,
+                               const std::vector<std::string>& inputs, bool force) {
+  // The rules of check_output_file first: they say more about a target that is no file.
+  if (OutputError e = check_output_files(paths, inputs)) return e;
+  if (!force)
+    for (const std::string& p : paths) {
+      std::error_code ec;
+      if (std::filesystem::exists(p, ec) && !ec)
+        return {exit_code::kBadInput, p + " exists; use --force to overwrite it"};
+    }
+  return {};
+}
+
+CLI::Option* add_force_option(CLI::App* cmd, bool& force, const std::string& description) {
+  return cmd->add_flag("--force", force, description);
 }
 
 }  // namespace invfree

@@ -44,5 +44,13 @@ CLI::Option* add_output_directory_option(CLI::App* cmd, std::string& dir,
 // or none.
 OutputError check_output_files(std::initializer_list<std::string> paths,
                                const std::vector<std::string>& inputs = {});
+// The same, and the rule every output follows (docs/outputs.md): a file that exists
+// already is refused (exit_code::kBadInput, "... exists; use --force to overwrite it")
+// unless `force`.
+OutputError check_output_files(std::initializer_list<std::string> paths,
+                               const std::vector<std::string>& inputs, bool force);
+
+// --force: the flag that allows a command to replace its existing outputs.
+CLI::Option* add_force_option(CLI::App* cmd, bool& force, const std::string& description);
 
 }  // namespace invfree

@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "app/cli_suggestions.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
       "129 hang-up (SIGHUP), 130 interrupted (Ctrl-C, SIGTERM); outputs: docs/outputs.md."};
   app.require_subcommand(0, 1);  // none: the live window (app/live_command.cpp)
   app.set_help_all_flag("--help-all", "show help for every command");
+  app.set_version_flag("--version", "invfree " INVFREE_VERSION);
   // After parsing (so --help still works), before any command runs.
   app.parse_complete_callback([] {
     if (const std::string e = check_thread_variable(); !e.empty()) throw CLI::ValidationError(e);
@@ -60,8 +62,11 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::string what = e.what();  // may quote the user's text: keep the error on one line
+    // May quote the user's text: keep the error on one line.
+    std::string what = e.what() + invfree::cli_suggestions(app);
     for (char& c : what)
       if (c == '\n' || c == '\r') c = ' ';
     std::fprintf(stderr, "invfree: %s (see invfree --help)\n", what.c_str());

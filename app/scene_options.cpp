@@ -7,13 +7,44 @@ namespace invfree {
 
 void SceneOptions::add_to(CLI::App* cmd, const std::string& scene_what,
                           const std::string& set_what) {
-  cmd->add_option("--scene", scene, scene_what + " (" + builtin_scene_names() + ") or a TOML scene file")
+  cmd->add_option("--scene", scene,
+                  scene_what + " (" + builtin_scene_names() + ") or a TOML scene file")
       ->capture_default_str();
   cmd->add_option("--set", overrides, set_what + ", e.g. --set material.E=1e4 (repeatable)")
       ->type_name("SECTION.KEY=VALUE");
 }
 
+namespace {
+
+// "material.E" for "material.E=1e4" (spaces around the name ignored).
+std::string override_key(const std::string& assignment) {
+  std::string key = assignment.substr(0, assignment.find('='));
+  key.erase(0, key.find_first_not_of(" \t"));
+  key.erase(key.find_last_not_of(" \t") + 1);
+  return key;
+}
+
+// The material is given either as E and nu or as mu and lambda, on the command line as in
+// a file: mixing them would make the result depend on the order of the --set options.
+std::string mixed_material_error(const std::vector<std::string>& overrides) {
+  std::string young, lame;
+  for (const std::string& o : overrides) {
+    const std::string key = override_key(o);
+    if (key == "material.E" || key == "material.nu") young = young.empty() ? key : young;
+    if (key == "material.mu" || key == "material.lambda") lame = lame.empty() ? key : lame;
+  }
+  if (young.empty() || lame.empty()) return "";
+  return "--set " + young + " and --set " + lame +
+         ": give either E and nu or mu and lambda, not both";
+}
+
+}  // namespace
+
 std::optional<SceneDef> SceneOptions::resolve(std::string* error) const {
+  if (std::string e = mixed_material_error(overrides); !e.empty()) {
+    *error = e;
+    return std::nullopt;
+  }
   SceneLoad load = load_scene(scene);
   if (!load.scene) {
     *error = load.error;

@@ -82,7 +82,7 @@ int run_simulate(const SimulateOptions& opt) {
   // Check every output before the first step: a long run must not fail at its end.
   AtomicFileWriter csv_file;
   if (!opt.csv_path.empty()) {
-    if (auto e = check_output_files({opt.csv_path}, opt.scene.input_files()))
+    if (auto e = check_output_files({opt.csv_path}, opt.scene.input_files(), opt.force))
       return fail(e.exit_code, e.message);
     if (auto e = csv_file.open(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
@@ -170,7 +170,8 @@ void register_simulate_command(CLI::App& app, int& exit_code) {
                   "wall_ms (energies in J; docs/outputs.md)")
       ->type_name("FILE")
       ->check(non_empty_path());
-  cmd->add_flag("--force", opt.force, "write into a non-empty --obj directory");
+  cmd->add_flag("--force", opt.force,
+                "overwrite an existing --csv file; write into a non-empty --obj directory");
 }
 
 }  // namespace invfree

@@ -20,8 +20,8 @@ namespace {
 
 int run_stability_command(const SweepCommandOptions& opt) {
   const std::string md_path = opt.out + "/stability.md", csv_path = opt.out + "/stability.csv",
-                    png_path = opt.out + "/stability.png";
-  if (auto e = check_output_files({md_path, csv_path, png_path}))
+                    png_path = opt.out + "/stability." + chart_extension(opt.format);
+  if (auto e = check_output_files({md_path, csv_path, png_path}, {}, opt.force))
     return fail(e.exit_code, e.message);
 
   const StabilityResult result = run_stability(sweep_options(opt, "stability"));
@@ -30,7 +30,7 @@ int run_stability_command(const SweepCommandOptions& opt) {
   for (const std::string& e : result.scene_errors) std::fprintf(stderr, "invfree: %s\n", e.c_str());
   std::string error = write_file_atomically(csv_path, stability_csv(result));
   if (error.empty()) error = write_file_atomically(md_path, stability_markdown(result));
-  if (error.empty()) error = write_png(png_path, contact_sheet(result));
+  if (error.empty()) error = write_canvas(png_path, *contact_sheet(result, opt.format));
   if (!error.empty()) return fail(exit_code::kOutputFailed, error);
 
   int ok = 0, failed = 0, na = 0, lecture_failed = 0;
@@ -43,8 +43,9 @@ int run_stability_command(const SweepCommandOptions& opt) {
       ++failed;
     if (c.method == "lecture" && c.verdict != Verdict::Ok && c.verdict != Verdict::NotApplicable) {
       ++lecture_failed;
-      std::fprintf(stderr, "invfree: the lecture's method failed on %s: %s at step %ld: %s\n",
-                   c.scene.c_str(), verdict_name(c.verdict), c.fail_step, c.message.c_str());
+      std::fprintf(stderr, "invfree: the lecture's method failed on %s: %s (%s): %s\n",
+                   c.scene.c_str(), verdict_name(c.verdict), failure_time(c).c_str(),
+                   c.message.c_str());
     }
   }
   std::printf(
@@ -63,8 +64,9 @@ void register_stability_command(CLI::App& app, int& exit_code) {
       app, exit_code, "stability",
       "run every method on every stress scene; write stability.md, stability.csv, stability.png",
       run_stability_command);
-  add_sweep_options(cmd, opt, "directory for stability.md, stability.csv and stability.png",
-                    "only the first 2 s of each scene");
+  add_sweep_options(
+      cmd, opt, "directory for stability.md, stability.csv and stability.png (or .svg, .pdf)",
+      "each scene only until its defining event (the ceiling stops), without settling");
 }
 
 }  // namespace invfree

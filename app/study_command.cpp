@@ -29,16 +29,20 @@ int run_study_command(const StudyCommandOptions& opt) {
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
   const std::string csv_path = opt.sweep.out + "/study.csv",
-                    png_path = opt.sweep.out + "/study.png",
-                    sweeps_path = opt.sweep.out + "/study-sweeps.png";
-  if (auto e = check_output_files({csv_path, png_path, sweeps_path}, opt.scene.input_files()))
+                    ext = chart_extension(opt.sweep.format),
+                    png_path = opt.sweep.out + "/study." + ext,
+                    sweeps_path = opt.sweep.out + "/study-sweeps." + ext;
+  if (auto e = check_output_files({csv_path, png_path, sweeps_path}, opt.scene.input_files(),
+                                  opt.sweep.force))
     return fail(e.exit_code, e.message);
 
   const StudyResult result = run_study(*scene, sweep_options(opt.sweep, "study"));
   if (result.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
   error = write_file_atomically(csv_path, study_csv(result));
-  if (error.empty()) error = write_png(png_path, study_chart(result));
-  if (error.empty()) error = write_png(sweeps_path, sweeps_chart(result));
+  if (error.empty())
+    error = write_canvas(png_path, *chart_canvas(study_panels(result), opt.sweep.format));
+  if (error.empty())
+    error = write_canvas(sweeps_path, *chart_canvas(sweeps_panels(result), opt.sweep.format));
   if (!error.empty()) return fail(exit_code::kOutputFailed, error);
 
   int failed = 0;
@@ -62,8 +66,9 @@ void register_study_command(CLI::App& app, int& exit_code) {
       "study.csv, study.png, study-sweeps.png",
       run_study_command);
   opt.scene.add_to(cmd);
-  add_sweep_options(cmd, opt.sweep, "directory for study.csv, study.png and study-sweeps.png",
-                    "fewer and shorter runs (under a minute on 2 cores)");
+  add_sweep_options(cmd, opt.sweep,
+                    "directory for study.csv, study.png and study-sweeps.png (or .svg, .pdf)",
+                    "fewer h, tolerances and meshes, and a coarser reference (docs/study.md)");
 }
 
 }  // namespace invfree

@@ -11,7 +11,7 @@ packages=(
   libsuitesparse-dev libopenblas0-pthread                 # CHOLMOD direct solver
   libosmesa6-dev libglfw3-dev libimgui-dev libstb-dev     # offscreen and live rendering
   zlib1g-dev                                              # PNG frames (deflate for stb_image_write)
-  fonts-dejavu-core                                       # text in charts
+  libcairo2-dev libfreetype-dev fonts-dejavu-core         # charts (PNG, SVG, PDF) and their text
   xvfb xauth                                              # live-mode tests without a display
   clang libclang-rt-14-dev                                # libFuzzer target
   ffmpeg                                                  # optional: render --mp4

@@ -1,17 +1,15 @@
 #include "app/plot/chart.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstdio>
 
 #include "app/plot/axis.h"
-#include "app/plot/raster.h"
 
 namespace invfree {
 
 namespace {
 
-constexpr Rgb kWhite{1.0f, 1.0f, 1.0f};
 constexpr Rgb kInk{0.10f, 0.10f, 0.12f};
 constexpr Rgb kMuted{0.35f, 0.35f, 0.38f};
 constexpr Rgb kGridMajor{0.85f, 0.85f, 0.87f};
@@ -24,46 +22,55 @@ MarkerShape marker_for(size_t index) {
   return shapes[index % 5];
 }
 
-// "10" with a superscript exponent; returns its width. Draws only when `image` is set.
-double power_of_ten_label(Image* image, int exponent, double x, double y, double size,
+// "10" with a superscript exponent; returns its width. Draws only when `canvas` is set.
+double power_of_ten_label(Canvas* canvas, int exponent, double x, double y, double size,
                           Align align) {
   const std::string base = "10";
   const std::string exp = (exponent < 0 ? "\u2212" : "") + std::to_string(std::abs(exponent));
   const double small = size * 0.72;
   const double w = text_width(base, size) + text_width(exp, small) + size * 0.05;
-  if (image) {
+  if (canvas) {
     const double left = align == Align::Left ? x : align == Align::Center ? x - w / 2.0 : x - w;
-    draw_text(*image, base, left, y, size, kInk);
-    draw_text(*image, exp, left + text_width(base, size) + size * 0.05, y - size * 0.42, small,
-              kInk);
+    canvas->text(base, left, y, size, kInk);
+    canvas->text(exp, left + text_width(base, size) + size * 0.05, y - size * 0.42, small, kInk);
   }
   return w;
 }
 
-double tick_label(Image* image, const Tick& t, double x, double y, double size, Align align) {
-  if (t.decade_label) return power_of_ten_label(image, t.exponent, x, y, size, align);
-  if (image) draw_text(*image, t.label, x, y, size, kInk, align);
+double tick_label(Canvas* canvas, const Tick& t, double x, double y, double size, Align align) {
+  if (t.decade_label) return power_of_ten_label(canvas, t.exponent, x, y, size, align);
+  if (canvas) canvas->text(t.label, x, y, size, kInk, align);
   return text_width(t.label, size);
 }
 
-// Where a chart's parts go (pixels) and how large its text is, all scaled by u with the
-// image (designed at 1280x800).
+// Where a chart's parts go and how large its text is, all scaled by u with the chart
+// (designed at 1280 x 800).
 struct ChartLayout {
-  int width = 0, height = 0;
-  double u = 1.0, title_size = 0, label_size = 0, tick_size = 0, legend_size = 0;
+  double width = 0, height = 0;  // the plot's part
+  double u = 1.0, title_size = 0, label_size = 0, tick_size = 0, legend_size = 0, note_size = 0;
   std::vector<std::string> title_lines;
-  bool has_legend = false;
+  struct LegendEntry {
+    size_t series;
+    std::vector<std::string> lines;
+    double baseline;
+  };
+  std::vector<LegendEntry> legend;
+  double legend_x = 0;
+  std::vector<std::vector<std::string>> notes;  // wrapped lines per paragraph
+  double notes_top = 0, total_height = 0;
   PlotFrame frame;  // the plot area and the axes' ranges
   std::vector<Tick> xticks, yticks;
 };
 
-// Axes from the data; title on top, the legend and notes in a column on the right.
-ChartLayout chart_layout(const ChartSpec& spec, int width, int height) {
+// Axes from the data; the title on top, the legend in a column on the right, the notes
+// below everything.
+ChartLayout chart_layout(const ChartSpec& spec) {
   ChartLayout c;
-  c.width = width;
-  c.height = height;
-  const double u = c.u = std::clamp(std::min(width / 1280.0, height / 800.0), 0.4, 4.0);
+  c.width = std::max(spec.width, 160);
+  c.height = std::max(spec.height, 120);
+  const double u = c.u = std::clamp(std::min(c.width / 1280.0, c.height / 800.0), 0.4, 4.0);
   c.title_size = 26 * u, c.label_size = 19 * u, c.tick_size = 16 * u, c.legend_size = 16 * u;
+  c.note_size = 15 * u;
   std::vector<double> xs, ys;
   for (const Series& s : spec.series)
     for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
@@ -73,57 +80,72 @@ ChartLayout chart_layout(const ChartSpec& spec, int width, int height) {
   const AxisRange xr = axis_range(xs, spec.log_x), yr = axis_range(ys, spec.log_y);
   c.xticks = axis_ticks(xr);
   c.yticks = axis_ticks(yr);
-  c.has_legend = !spec.notes.empty();
-  for (const Series& s : spec.series) c.has_legend = c.has_legend || !s.label.empty();
-  const double legend_w = c.has_legend ? std::clamp(width * 0.25, 160.0 * u, 400.0 * u) : 0.0;
+  bool has_legend = false;
+  for (const Series& s : spec.series) has_legend = has_legend || !s.label.empty();
+  const double legend_w = has_legend ? std::clamp(c.width * 0.25, 160.0 * u, 400.0 * u) : 0.0;
   double y_tick_w = 0.0;
   for (const Tick& t : c.yticks)
     if (t.labelled)
       y_tick_w = std::max(y_tick_w, tick_label(nullptr, t, 0, 0, c.tick_size, Align::Right));
-  c.title_lines = wrap_text(spec.title, c.title_size, width - 40 * u);
+  c.title_lines = wrap_text(spec.title, c.title_size, c.width - 40 * u);
   const double top = 24 * u + c.title_lines.size() * c.title_size * 1.2 + 12 * u;
   const double left = 24 * u + c.label_size * 1.4 + y_tick_w + 12 * u;
-  const double right = width - legend_w - 30 * u;
-  const double bottom = height - (20 * u + c.label_size * 1.4 + c.tick_size * 1.6 + 10 * u);
+  const double right = c.width - legend_w - 30 * u;
+  const double bottom = c.height - (20 * u + c.label_size * 1.4 + c.tick_size * 1.6 + 10 * u);
   c.frame = PlotFrame{left, top, right, bottom, xr, yr};
+
+  c.legend_x = right + 24 * u;
+  const double swatch = 34 * u, text_w = c.width - c.legend_x - 16 * u - swatch - 10 * u;
+  double ly = top + c.legend_size;
+  for (size_t k = 0; k < spec.series.size(); ++k) {
+    if (spec.series[k].label.empty()) continue;
+    c.legend.push_back({k, wrap_text(spec.series[k].label, c.legend_size, text_w), ly});
+    ly += (c.legend.back().lines.size() * 1.25 + 0.6) * c.legend_size;
+  }
+  c.notes_top = std::max(c.height, ly) + 4 * u;
+  double ny = c.notes_top;
+  for (const std::string& note : spec.notes) {
+    c.notes.push_back(wrap_text(note, c.note_size, c.width - 48 * u));
+    ny += (c.notes.back().size() * 1.3 + 0.5) * c.note_size;
+  }
+  c.total_height = std::ceil(spec.notes.empty() ? std::max(c.height, ly) : ny + 12 * u);
   return c;
 }
 
 // The title, the grid, then the frame, the ticks with their labels and the axis labels.
-void draw_axes(Image& img, const ChartSpec& spec, const ChartLayout& c) {
+void draw_axes(Canvas& cv, const ChartSpec& spec, const ChartLayout& c) {
   const double u = c.u, tick_size = c.tick_size, label_size = c.label_size;
   const PlotFrame& frame = c.frame;
   const double left = frame.left, top = frame.top, right = frame.right, bottom = frame.bottom;
   for (size_t i = 0; i < c.title_lines.size(); ++i)
-    draw_text(img, c.title_lines[i], c.width / 2.0, 24 * u + c.title_size * (1.2 * i + 0.85),
-              c.title_size, kInk, Align::Center);
+    cv.text(c.title_lines[i], c.width / 2.0, 24 * u + c.title_size * (1.2 * i + 0.85), c.title_size,
+            kInk, Align::Center);
   for (const Tick& t : c.xticks) {
     const double px = frame.to_px_x(t.value);
-    draw_line(img, {px, top}, {px, bottom}, 1.0, t.major ? kGridMajor : kGridMinor);
+    cv.line({px, top}, {px, bottom}, 1.0, t.major ? kGridMajor : kGridMinor);
   }
   for (const Tick& t : c.yticks) {
     const double py = frame.to_px_y(t.value);
-    draw_line(img, {left, py}, {right, py}, 1.0, t.major ? kGridMajor : kGridMinor);
+    cv.line({left, py}, {right, py}, 1.0, t.major ? kGridMajor : kGridMinor);
   }
-  stroke_rect(img, left, top, right, bottom, 1.2 * u, kInk);
+  cv.stroke_rect(left, top, right, bottom, 1.2 * u, kInk);
   for (const Tick& t : c.xticks) {
     const double px = frame.to_px_x(t.value);
     const double len = (t.major ? 8.0 : 4.5) * u;
-    draw_line(img, {px, bottom}, {px, bottom + len}, 1.2 * u, kInk);
+    cv.line({px, bottom}, {px, bottom + len}, 1.2 * u, kInk);
     if (t.labelled)
-      tick_label(&img, t, px, bottom + len + tick_size * 1.05, tick_size, Align::Center);
+      tick_label(&cv, t, px, bottom + len + tick_size * 1.05, tick_size, Align::Center);
   }
   for (const Tick& t : c.yticks) {
     const double py = frame.to_px_y(t.value);
     const double len = (t.major ? 8.0 : 4.5) * u;
-    draw_line(img, {left - len, py}, {left, py}, 1.2 * u, kInk);
+    cv.line({left - len, py}, {left, py}, 1.2 * u, kInk);
     if (t.labelled)
-      tick_label(&img, t, left - len - 4 * u, py + tick_size * 0.35, tick_size, Align::Right);
+      tick_label(&cv, t, left - len - 4 * u, py + tick_size * 0.35, tick_size, Align::Right);
   }
-  draw_text(img, spec.x_label, (left + right) / 2.0, c.height - 20 * u, label_size, kInk,
-            Align::Center);
-  draw_text_vertical(img, spec.y_label, 20 * u + label_size, (top + bottom) / 2.0, label_size,
-                     kInk);
+  cv.text(spec.x_label, (left + right) / 2.0, c.height - 20 * u, label_size, kInk, Align::Center);
+  cv.text(spec.y_label, 20 * u + label_size, (top + bottom) / 2.0, label_size, kInk, Align::Center,
+          true);
 }
 
 double line_width(const ChartLayout& c) {
@@ -133,9 +155,12 @@ double marker_radius(const ChartLayout& c) {
   return 5.0 * c.u;
 }
 
-// Lines first (broken at skipped points), then markers on top.
-void draw_series(Image& img, const ChartSpec& spec, const ChartLayout& c) {
+// Lines first (broken at skipped points, clipped to the plot), then markers and their
+// labels on top.
+void draw_series(Canvas& cv, const ChartSpec& spec, const ChartLayout& c) {
   const PlotFrame& frame = c.frame;
+  cv.push();
+  cv.clip(frame.left, frame.top, frame.right, frame.bottom);
   for (const Series& s : spec.series) {
     if (!s.lines) continue;
     std::vector<Point2> run;
@@ -145,60 +170,94 @@ void draw_series(Image& img, const ChartSpec& spec, const ChartLayout& c) {
         run.push_back({frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])});
         continue;
       }
-      if (run.size() >= 2) draw_polyline(img, run, line_width(c), s.color);
+      cv.polyline(run, line_width(c), s.color, 1.0, s.dash * c.u);
       run.clear();
     }
   }
+  cv.pop();
+  // Point labels go above-right of their point, or below-right when that would overlap a
+  // label already placed; a label that overlaps either way is left out.
+  std::vector<std::array<double, 4>> placed;
+  const double label_size = 12 * c.u, r = marker_radius(c);
+  auto place_label = [&](const std::string& text, Point2 p) {
+    if (text.empty()) return;
+    const double w = text_width(text, label_size);
+    for (double baseline : {p.y - 1.2 * r, p.y + 1.2 * r + label_size * 0.8}) {
+      const std::array<double, 4> box{p.x + 1.6 * r, baseline - label_size * 0.8, p.x + 1.6 * r + w,
+                                      baseline + label_size * 0.2};
+      const bool overlaps = std::any_of(placed.begin(), placed.end(), [&](const auto& b) {
+        return box[0] < b[2] && b[0] < box[2] && box[1] < b[3] && b[1] < box[3];
+      });
+      if (overlaps) continue;
+      placed.push_back(box);
+      cv.text(text, box[0], baseline, label_size, kMuted);
+      return;
+    }
+  };
   for (size_t k = 0; k < spec.series.size(); ++k) {
     const Series& s = spec.series[k];
-    if (!s.markers) continue;
-    for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-      if (frame.plottable(s.x[i], s.y[i]))
-        draw_marker(img, {frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])}, marker_radius(c),
-                    marker_for(k), s.color, kInk);
+    for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!frame.plottable(s.x[i], s.y[i])) continue;
+      const Point2 p{frame.to_px_x(s.x[i]), frame.to_px_y(s.y[i])};
+      if (s.markers) cv.marker(p, r, marker_for(k), s.color, kInk);
+      if (i < s.point_labels.size()) place_label(s.point_labels[i], p);
+    }
   }
 }
 
-// The legend (a swatch and the label per labelled series), then the notes, word-wrapped.
-void draw_legend(Image& img, const ChartSpec& spec, const ChartLayout& c) {
-  const double u = c.u, legend_size = c.legend_size;
-  const double lx = c.frame.right + 24 * u, lw = c.width - lx - 16 * u;
-  double ly = c.frame.top + legend_size;
-  const double swatch = 34 * u;
-  for (size_t k = 0; k < spec.series.size(); ++k) {
-    const Series& s = spec.series[k];
-    if (s.label.empty()) continue;
-    const auto lines = wrap_text(s.label, legend_size, lw - swatch - 10 * u);
-    const double cy = ly - legend_size * 0.35;
-    if (s.lines) draw_line(img, {lx, cy}, {lx + swatch, cy}, line_width(c), s.color);
+// The legend (a swatch and the label per labelled series), then the notes.
+void draw_legend_and_notes(Canvas& cv, const ChartSpec& spec, const ChartLayout& c) {
+  const double u = c.u, swatch = 34 * u, lx = c.legend_x;
+  for (const ChartLayout::LegendEntry& e : c.legend) {
+    const Series& s = spec.series[e.series];
+    const double cy = e.baseline - c.legend_size * 0.35;
+    if (s.lines)
+      cv.polyline({{lx, cy}, {lx + swatch, cy}}, line_width(c), s.color, 1.0, s.dash * u * 0.5);
     if (s.markers)
-      draw_marker(img, {lx + swatch / 2.0, cy}, marker_radius(c), marker_for(k), s.color, kInk);
-    for (size_t i = 0; i < lines.size(); ++i)
-      draw_text(img, lines[i], lx + swatch + 10 * u, ly + i * legend_size * 1.25, legend_size,
-                kInk);
-    ly += (lines.size() * 1.25 + 0.6) * legend_size;
+      cv.marker({lx + swatch / 2.0, cy}, marker_radius(c), marker_for(e.series), s.color, kInk);
+    for (size_t i = 0; i < e.lines.size(); ++i)
+      cv.text(e.lines[i], lx + swatch + 10 * u, e.baseline + i * c.legend_size * 1.25,
+              c.legend_size, kInk);
   }
-  if (!spec.notes.empty()) ly += legend_size * 0.8;
-  const double note_size = legend_size * 0.92;
-  for (const std::string& note : spec.notes) {
-    for (const std::string& line : wrap_text(note, note_size, lw)) {
-      draw_text(img, line, lx, ly, note_size, kMuted);
-      ly += note_size * 1.3;
+  double ny = c.notes_top + c.note_size;
+  for (const auto& lines : c.notes) {
+    for (const std::string& line : lines) {
+      cv.text(line, 24 * u, ny, c.note_size, kMuted);
+      ny += c.note_size * 1.3;
     }
-    ly += note_size * 0.5;
+    ny += c.note_size * 0.5;
   }
 }
 
 }  // namespace
 
-Image render_chart(const ChartSpec& spec) {
-  const int width = std::max(spec.width, 160), height = std::max(spec.height, 120);
-  Image img = make_image(width, height, kWhite);
-  const ChartLayout layout = chart_layout(spec, width, height);
-  draw_axes(img, spec, layout);
-  draw_series(img, spec, layout);
-  if (layout.has_legend) draw_legend(img, spec, layout);
-  return img;
+double chart_height(const ChartSpec& spec) {
+  return chart_layout(spec).total_height;
+}
+
+void draw_chart(Canvas& canvas, const ChartSpec& spec) {
+  const ChartLayout layout = chart_layout(spec);
+  draw_axes(canvas, spec, layout);
+  draw_series(canvas, spec, layout);
+  draw_legend_and_notes(canvas, spec, layout);
+}
+
+std::unique_ptr<Canvas> chart_canvas(const std::vector<ChartSpec>& panels, ChartFormat format) {
+  double width = 0.0, height = 0.0;
+  for (const ChartSpec& p : panels) {
+    width = std::max(width, double(std::max(p.width, 160)));
+    height += chart_height(p);
+  }
+  auto canvas = std::make_unique<Canvas>(width, height, format);
+  double y = 0.0;
+  for (const ChartSpec& p : panels) {
+    canvas->push();
+    canvas->translate(0.0, y);
+    draw_chart(*canvas, p);
+    canvas->pop();
+    y += chart_height(p);
+  }
+  return canvas;
 }
 
 }  // namespace invfree

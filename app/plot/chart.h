@@ -1,25 +1,23 @@
-// Charts drawn by invfree itself (no plotting tool): a CPU rasterizer with antialiased
-// lines, markers, linear or logarithmic axes (decade ticks and labels on log axes), a
-// legend, a title and free-text notes, and text from the DejaVu Sans font embedded at
-// build time (stb_truetype). PNG output through stb_image_write.
+// Charts drawn by invfree with Cairo (app/plot/canvas.h): lines, markers with optional
+// point labels (one that would overlap another is left out), linear or logarithmic axes (decade
+// ticks and labels on log axes), a legend, a title, and notes (word-wrapped below the plot; the
+// chart grows to hold them, so nothing is cut off). Panels stack vertically into one drawing,
+// written as PNG, SVG or PDF.
 //
-// Inputs: a ChartSpec (series in data units; non-finite points and, on a log axis,
-// points <= 0 are skipped). Output: an Image, RGBA8, rows top to bottom.
+// Inputs: ChartSpecs (series in data units; non-finite points and, on a log axis, points
+// <= 0 are skipped). Output: a Canvas (its texts() say what was written where).
 // Link target: invfree_plot (app/plot/CMakeLists.txt).
 #pragma once
 
-#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/colormap.h"
+#include "app/plot/canvas.h"
+#include "app/plot/image.h"
 
 namespace invfree {
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgba;  // width * height * 4 bytes, row-major, top row first
-};
 
 struct Series {
   std::string label;  // legend entry; an empty label is left out of the legend
@@ -27,20 +25,26 @@ struct Series {
   Rgb color{0.0f, 0.0f, 0.0f};
   bool markers = true;
   bool lines = true;
+  double dash = 0.0;                        // > 0: a dashed line (dash length at 1280 x 800)
+  std::vector<std::string> point_labels{};  // empty, or one (possibly empty) per point
 };
 
 struct ChartSpec {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;
   std::vector<Series> series;
-  std::vector<std::string> notes;  // paragraphs printed below the legend, word-wrapped
-  int width = 1280, height = 800;
+  std::vector<std::string> notes;  // paragraphs printed below the plot, word-wrapped
+  int width = 1280, height = 800;  // the plot's part; the notes add to the height
 };
 
-// Draws the chart. Never fails: an empty chart (no finite points) gets default axes.
-Image render_chart(const ChartSpec& spec);
+// The height the chart takes, its notes included.
+double chart_height(const ChartSpec& spec);
 
-// Writes `image` as a PNG, atomically (app/output_files.h). Returns "" or a one-line error.
-std::string write_png(const std::string& path, const Image& image);
+// Draws the chart with its top-left corner at the canvas's origin. Never fails: an empty
+// chart (no finite points) gets default axes.
+void draw_chart(Canvas& canvas, const ChartSpec& spec);
+
+// The panels one below the other in one drawing, as wide as the widest.
+std::unique_ptr<Canvas> chart_canvas(const std::vector<ChartSpec>& panels, ChartFormat format);
 
 }  // namespace invfree

@@ -1,7 +1,7 @@
 #include <string>
 
 #include "app/output_files.h"
-#include "app/plot/chart.h"
+#include "app/plot/image.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC

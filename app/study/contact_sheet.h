@@ -6,14 +6,17 @@
 // colour bar closes the sheet.
 #pragma once
 
-#include "app/plot/chart.h"
+#include <memory>
+
+#include "app/plot/canvas.h"
 #include "app/study/stability.h"
 
 namespace invfree {
 
-Image contact_sheet(const StabilityResult& result);
+std::unique_ptr<Canvas> contact_sheet(const StabilityResult& result, ChartFormat format);
 
-// One cell's picture of a frame: world window [-0.85, 0.85] x [ground - 0.05, ground + 1.65].
-void draw_frame(Image& image, const Frame& frame, int x0, int y0, int size);
+// One cell's picture of a frame: world window [-0.85, 0.85] x [ground - 0.05, ground + 1.65],
+// clipped to the cell.
+void draw_frame(Canvas& canvas, const Frame& frame, double x0, double y0, double size);
 
 }  // namespace invfree

@@ -70,6 +70,13 @@ const Method* find_method(const std::string& name) {
   return nullptr;
 }
 
+std::string method_model(const Method& method) {
+  const std::string key = "material.model=";
+  for (const char* o : method.overrides)
+    if (std::string(o).starts_with(key)) return std::string(o).substr(key.size());
+  return "";
+}
+
 std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps) {
   for (const char* o : method.overrides)
     if (std::string e = apply_override(scene, o); !e.empty()) return e;

@@ -28,6 +28,10 @@ struct Method {
 std::span<const Method> study_methods();
 const Method* find_method(const std::string& name);
 
+// The material model the method sets ("neo-hookean", "linear", ...): methods of one model
+// share one reference in the study, so only their errors compare with each other.
+std::string method_model(const Method& method);
+
 // The scene with the method's settings applied (time.h is divided by `substeps` when
 // `with_substeps`). Returns "" or the parser's error.
 std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps);

@@ -9,10 +9,15 @@
 
 namespace invfree {
 
-namespace {}  // namespace
+std::string failure_time(const StabilityCell& c) {
+  return "t = " + format_number(c.fail_step * c.h, "%.3g") + " s, " +
+         (c.substeps > 1 ? "substep " : "step ") + format_for_people(c.fail_step) +
+         (c.substeps > 1 ? " of h/" + std::to_string(c.substeps) : "");
+}
 
 StabilityResult run_stability(const SweepOptions& options) {
   StabilityResult result;
+  result.quick = options.quick;
   for (const Method& m : study_methods()) {
     result.methods.push_back(m.name);
     result.method_labels.push_back(m.label);
@@ -43,8 +48,7 @@ StabilityResult run_stability(const SweepOptions& options) {
       }
       SceneDef scene = *scenes[k];
       RunOptions run;
-      run.duration = stability_duration(scene);
-      if (options.quick) run.duration = std::min(run.duration, std::round(2.0 / scene.h) * scene.h);
+      run.duration = options.quick ? quick_stability_duration(scene) : stability_duration(scene);
       run.keep_frame = true;
       if (std::string e = apply_method(m, scene, true); !e.empty()) {
         cell.verdict = Verdict::NotApplicable;
@@ -58,16 +62,16 @@ StabilityResult run_stability(const SweepOptions& options) {
       cell.fail_step = r.fail_step;
       cell.wall_s = r.wall_s;
       cell.h = scene.h;
+      cell.substeps = m.substeps;
       cell.steps = r.steps;
       cell.duration = run.duration;
       cell.message = r.message;
       cell.frame = r.frame;
       result.total_wall_s += r.wall_s;
       options.report(std::string(m.name) + " on " + cell.scene + ": " + verdict_name(r.verdict) +
-                     (r.verdict == Verdict::Ok ? "" : " at step " + std::to_string(r.fail_step)) +
-                     " (" + std::to_string(r.steps) + " steps of " + format_number(scene.h) +
-                     " s, " + format_number(r.wall_s) + " s)" +
-                     (r.message.empty() ? "" : ": " + r.message));
+                     (r.verdict == Verdict::Ok ? "" : " (" + failure_time(cell) + ")") + " (" +
+                     format_for_people(r.steps) + " steps of " + format_number(scene.h) + " s, " +
+                     format_number(r.wall_s) + " s)" + (r.message.empty() ? "" : ": " + r.message));
       result.cells.push_back(std::move(cell));
     }
   }
@@ -89,9 +93,12 @@ std::string stability_markdown(const StabilityResult& r) {
   o << "# Where methods fail: `invfree stability`\n\n"
     << "Each row is a method, each column a stress scene (`assets/scenes/<scene>.toml`). A cell is "
        "`ok`, or "
-       "the verdict and the step at which the run failed (`n/a`: the method cannot start the "
-       "scene). "
+       "the verdict and when the run failed, in scene time and in the method's own steps "
+       "(`n/a`: the method cannot start the scene). "
        "Symplectic Euler takes 20 steps per scene step.\n\n";
+  if (r.quick)
+    o << "**A quick run** (`--quick`): each scene ran until its defining event (the ceiling "
+         "reaching its stop), without the 0.5 s to settle after it that a full run adds.\n\n";
   o << "| method |";
   for (const std::string& s : r.scenes) o << " `" << s << "` |";
   o << "\n|---|";
@@ -106,7 +113,7 @@ std::string stability_markdown(const StabilityResult& r) {
       else if (c.verdict == Verdict::NotApplicable)
         o << " n/a |";
       else
-        o << " **" << verdict_name(c.verdict) << "** (step " << c.fail_step << ") |";
+        o << " **" << verdict_name(c.verdict) << "** (" << failure_time(c) << ") |";
     }
     o << "\n";
   }
@@ -137,8 +144,8 @@ std::string stability_markdown(const StabilityResult& r) {
   for (const StabilityCell& c : r.cells)
     if (c.verdict != Verdict::Ok)
       o << "- " << c.method << " on `" << c.scene << "`: " << verdict_name(c.verdict)
-        << (c.verdict == Verdict::NotApplicable ? "" : " at step " + std::to_string(c.fail_step))
-        << ": " << c.message << "\n";
+        << (c.verdict == Verdict::NotApplicable ? "" : " (" + failure_time(c) + ")") << ": "
+        << c.message << "\n";
   for (const std::string& e : r.scene_errors) o << "- scene file error: " << e << "\n";
   return o.str();
 }

@@ -19,6 +19,7 @@ struct StabilityCell {
   long fail_step = -1;
   double wall_s = 0.0;  // wall-clock seconds inside step() for the whole run
   double h = 0.0;       // the step the method actually used
+  int substeps = 1;     // steps per scene step (symplectic Euler: 20)
   long steps = 0;
   double duration = 0.0;
   std::string message;
@@ -31,14 +32,20 @@ struct StabilityResult {
   std::vector<StabilityCell> cells;                 // row-major
   std::vector<std::string> scene_errors;            // a stress file that failed to load
   double total_wall_s = 0.0;
+  bool quick = false;    // each scene only until its defining event (--quick)
   bool stopped = false;  // `stop` returned true: the result is incomplete
   const StabilityCell& at(size_t method, size_t scene) const {
     return cells[method * scenes.size() + scene];
   }
 };
 
-// quick: the first 2 s of each scene only (the full ceiling travel otherwise).
+// quick: each scene until its defining event only (quick_stability_duration), not the
+// time to settle after it.
 StabilityResult run_stability(const SweepOptions& options);
+
+// When a failed run failed, for people: "t = 0.62 s, step 62", or for a method taking
+// substeps "t = 0.617 s, substep 1,234 of h/20".
+std::string failure_time(const StabilityCell& cell);
 
 std::string stability_csv(const StabilityResult& r);
 std::string stability_markdown(const StabilityResult& r);

@@ -64,12 +64,24 @@ std::optional<SceneDef> load_stress_scene(const StressScene& s, std::string* err
   return load.scene;
 }
 
-double stability_duration(const SceneDef& scene) {
+namespace {
+
+// When the ceiling reaches its stop (at least 1.5 s).
+double event_time(const SceneDef& scene) {
   double t = 1.5;
   if (scene.has_ceiling && scene.ceiling_velocity < 0.0 && scene.ceiling_y > scene.ceiling_stop)
     t = std::max(t, (scene.ceiling_y - scene.ceiling_stop) / -scene.ceiling_velocity);
-  t += 0.5;
-  return std::ceil(t / scene.h - 1e-9) * scene.h;
+  return t;
+}
+
+}  // namespace
+
+double stability_duration(const SceneDef& scene) {
+  return std::ceil((event_time(scene) + 0.5) / scene.h - 1e-9) * scene.h;
+}
+
+double quick_stability_duration(const SceneDef& scene) {
+  return std::ceil(event_time(scene) / scene.h - 1e-9) * scene.h;
 }
 
 }  // namespace invfree

@@ -30,5 +30,9 @@ std::optional<SceneDef> load_stress_scene(const StressScene& s, std::string* err
 // Simulated time of a stability run: until the ceiling has stopped, plus 0.5 s to settle
 // (at least 2 s), rounded to whole steps of the scene's h.
 double stability_duration(const SceneDef& scene);
+// The quick run (`stability --quick`): until the scene's defining event, the ceiling
+// reaching its stop (the squash; at least 1.5 s, which covers a drop or an impact), with
+// no time to settle, rounded up to whole steps of the scene's h.
+double quick_stability_duration(const SceneDef& scene);
 
 }  // namespace invfree

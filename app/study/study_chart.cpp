@@ -7,7 +7,6 @@
 #include <tuple>
 
 #include "app/format_number.h"
-#include "app/plot/raster.h"
 #include "app/study/methods.h"
 
 namespace invfree {
@@ -94,21 +93,6 @@ std::vector<size_t> pareto_front(const std::vector<double>& x, const std::vector
   return front;
 }
 
-Image stack_vertical(const std::vector<Image>& panels) {
-  int w = 0, h = 0;
-  for (const Image& p : panels) {
-    w = std::max(w, p.width);
-    h += p.height;
-  }
-  Image out = make_image(w, h, {1.0f, 1.0f, 1.0f});
-  int y = 0;
-  for (const Image& p : panels) {
-    blit(out, p, 0, y);
-    y += p.height;
-  }
-  return out;
-}
-
 namespace {
 
 // Error against wall time over the h sweep, with the Pareto front.
@@ -121,20 +105,40 @@ ChartSpec speed_accuracy_panel(const StudyResult& r) {
   a.y_label = "RMS node-position error / side length";
   a.log_x = a.log_y = true;
   a.series = h_sweep_series(r, &StudyRow::wall_s);
-  std::vector<double> all_x, all_y;
-  for (const Series& s : a.series) {
-    all_x.insert(all_x.end(), s.x.begin(), s.x.end());
-    all_y.insert(all_y.end(), s.y.begin(), s.y.end());
+  // One Pareto front per material model: a model's errors are measured against its own
+  // reference, so a point of one model cannot beat a point of another.
+  std::vector<std::string> models;
+  for (const Method& m : study_methods())
+    if (std::find(models.begin(), models.end(), method_model(m)) == models.end())
+      models.push_back(method_model(m));
+  for (const std::string& model : models) {
+    std::vector<double> xs, ys, hs;
+    int methods = 0;
+    std::string member;
+    for (const Method& m : study_methods()) {
+      if (method_model(m) != model) continue;
+      ++methods;
+      member = m.name;
+      for (const StudyRow* row : plotted_rows(r, m.name, in_h_sweep)) {
+        xs.push_back(row->wall_s);
+        ys.push_back(row->error);
+        hs.push_back(row->h);
+      }
+    }
+    Series front;
+    front.label = "Pareto front, " + model +
+                  (methods > 1 ? " (" + std::to_string(methods) + " methods, one reference)"
+                               : " (its own reference)");
+    front.color = methods > 1 ? Rgb{0.0f, 0.0f, 0.0f} : method_color(member);
+    front.markers = false;
+    front.dash = 9.0;
+    for (size_t i : pareto_front(xs, ys)) {
+      front.x.push_back(xs[i]);
+      front.y.push_back(ys[i]);
+      front.point_labels.push_back("h = " + format_number(hs[i], "%.3g"));
+    }
+    if (!front.x.empty()) a.series.push_back(front);
   }
-  Series front;
-  front.label = "Pareto front (nothing is both faster and more accurate)";
-  front.color = {0.0f, 0.0f, 0.0f};
-  front.markers = false;
-  for (size_t i : pareto_front(all_x, all_y)) {
-    front.x.push_back(all_x[i]);
-    front.y.push_back(all_y[i]);
-  }
-  a.series.push_back(front);
   double h_lo = INFINITY, h_hi = 0.0, e_lo = INFINITY, e_hi = 0.0;
   for (const StudyRow& row : r.rows) {
     if (!in_h_sweep(r, row) || !find_method(row.method)) continue;
@@ -143,6 +147,10 @@ ChartSpec speed_accuracy_panel(const StudyResult& r) {
     lo = std::min(lo, row.h);
     hi = std::max(hi, row.h);
   }
+  a.notes.push_back(
+      "Each model is measured against its own reference, so errors compare only within a "
+      "model: the dashed lines are one Pareto front per model (nothing of that model is both "
+      "faster and more accurate), their points labelled with h.");
   a.notes.push_back(
       "Error at t = " + join_times(r.sample_times) +
       " s against a reference of the same model at h = " + format_number(r.reference_h) +
@@ -233,6 +241,9 @@ ChartSpec tolerance_panel(const StudyResult& r) {
     for (const auto& [tol, wall, err] : pts) {
       s.x.push_back(wall);
       s.y.push_back(err);
+      // The lecture's points carry their tolerance (the others sit on the same curve).
+      s.point_labels.push_back(
+          m.name == std::string("lecture") ? "tol = " + format_number(tol, "%.2g") : "");
     }
     c.series.push_back(s);
   }
@@ -261,30 +272,40 @@ ChartSpec tolerance_panel(const StudyResult& r) {
   return c;
 }
 
-// Error against wall time over the mesh resolutions, against the finer mesh.
+// Error against n_seg over the mesh resolutions, against the finer mesh; each point
+// labelled with its wall time. A y range within a factor of 1.5 is called narrow in the
+// title, so a small change does not read as a large one.
 ChartSpec mesh_panel(const StudyResult& r) {
   ChartSpec d;
   d.title = "Mesh resolution, lecture's method at h = " + format_number(r.scene.h) +
             " s, against a " + std::to_string(r.mesh_reference_n_seg) + "x" +
             std::to_string(r.mesh_reference_n_seg) +
             " mesh at h = " + format_number(r.mesh_reference_h) + " s";
-  d.x_label = "wall-clock time per simulated second (s/s)";
+  d.x_label = "segments per side (n_seg)";
   d.y_label = "RMS error at the coarse nodes / side length";
-  d.log_x = d.log_y = true;
+  d.log_y = true;  // n_seg on a linear axis: its few values each get a labelled tick
   Series s;
-  s.label = "lecture's method; n_seg in the notes";
+  s.label = "lecture's method (points labelled with wall time per simulated second)";
   s.color = method_color("lecture");
+  double e_lo = INFINITY, e_hi = 0.0;
   for (const StudyRow& row : r.rows)
     if (in_mesh_sweep(r, row)) {
       if (std::isfinite(row.error) && row.error > 0.0) {
-        s.x.push_back(row.wall_s);
+        s.x.push_back(row.n_seg);
         s.y.push_back(row.error);
+        s.point_labels.push_back(format_number(row.wall_s, "%.3g") + " s/s");
+        e_lo = std::min(e_lo, row.error);
+        e_hi = std::max(e_hi, row.error);
       }
       d.notes.push_back(
           "n_seg = " + std::to_string(row.n_seg) + ": " + row.failure +
           (std::isfinite(row.error) ? ", error " + format_number(row.error) : std::string()) +
           ", " + format_number(row.wall_s) + " s/s");
     }
+  if (s.x.size() >= 2 && e_hi < 1.5 * e_lo)
+    d.title += "; narrow y range: every error lies between " + format_number(e_lo, "%.3g") +
+               " and " + format_number(e_hi, "%.3g") + " (a spread of " +
+               format_number(100.0 * (e_hi - e_lo) / e_lo, "%.2g") + "%)";
   d.series.push_back(s);
   d.notes.push_back("Coarse nodes are compared with the same material points of the fine mesh.");
   for (const std::string& f : r.reference_failures) d.notes.push_back(f);
@@ -293,13 +314,12 @@ ChartSpec mesh_panel(const StudyResult& r) {
 
 }  // namespace
 
-Image study_chart(const StudyResult& r) {
-  return stack_vertical(
-      {render_chart(speed_accuracy_panel(r)), render_chart(convergence_panel(r))});
+std::vector<ChartSpec> study_panels(const StudyResult& r) {
+  return {speed_accuracy_panel(r), convergence_panel(r)};
 }
 
-Image sweeps_chart(const StudyResult& r) {
-  return stack_vertical({render_chart(tolerance_panel(r)), render_chart(mesh_panel(r))});
+std::vector<ChartSpec> sweeps_panels(const StudyResult& r) {
+  return {tolerance_panel(r), mesh_panel(r)};
 }
 
 }  // namespace invfree

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/format_number.h"
 #include "potential/plane_barrier.h"
 
 namespace invfree {
@@ -107,15 +108,15 @@ Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
   if (!sim.scene.has_ground) floor = std::min(floor, gravity_floor(sim));
   for (int i = 0; i < sim.mesh.node_count(); ++i)
     if ((sim.x.segment<2>(2 * i) - box_center).lpNorm<Eigen::Infinity>() > box_radius) {
-      *why = "node " + std::to_string(i) + " left the bounding box (" + std::to_string(box_radius) +
-             " m around the start)";
+      *why = "node " + std::to_string(i) + " left the bounding box (" +
+             format_for_people(box_radius) + " m around the start)";
       return Verdict::BlewUp;
     }
   const double e = total_energy(sim);
   if (energy_exceeds_budget(e, floor, initial_energy, ceiling_work, factor, minimum_budget)) {
-    *why = "energy " + std::to_string(e - floor) + " J above the floor exceeds " +
-           std::to_string(factor) + "x what the start and the ceiling supplied (" +
-           std::to_string(initial_energy - floor + ceiling_work) + " J)";
+    *why = "energy " + format_for_people(e - floor) + " J above the floor exceeds " +
+           format_for_people(factor) + "\u00d7 what the start and the ceiling supplied (" +
+           format_for_people(initial_energy - floor + ceiling_work) + " J)";
     return Verdict::BlewUp;
   }
   if (!inversion_is_failure) return Verdict::Ok;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scene_io/builtin_scenes.h"
+#include "scene_io/did_you_mean.h"
 #include "scene_io/error_text.h"
 #include "scene_io/key_table.h"
 #include "scene_io/toml_guard.h"
@@ -28,38 +29,17 @@ using scene_io::MaterialInput;
 // refusing them keeps `--scene /dev/zero` or a stray video from eating memory.
 constexpr std::uintmax_t kMaxSceneFileBytes = 1 << 20;
 
-size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diag = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t up = row[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
-  std::string best;
-  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
-  for (const auto& c : candidates) {
-    const size_t d = edit_distance(word, c);
-    if (d < best_d) best_d = d, best = c;
-  }
-  return best.empty() ? "" : " (did you mean \"" + best + "\"?)";
-}
-
 std::string unknown_section_error(std::string_view section) {
   const std::vector<std::string> names = scene_io::section_names();
-  std::string list;
-  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  return "unknown section" + did_you_mean(section, names) + " (sections: " + list + ")";
+  return "unknown section" + did_you_mean(section, names) + " (sections: " + join_words(names) +
+         ")";
+}
+
+// "unknown key", the nearest key of the section and the list of its keys.
+std::string unknown_key_error(const std::string& section, std::string_view key) {
+  const std::vector<std::string> keys = scene_io::keys_of(section);
+  return "unknown key" + did_you_mean(key, keys) + " (keys of [" + section +
+         "]: " + join_words(keys) + ")";
 }
 
 // Reads one key (known to exist) into the scene; a key of a term's section other than
@@ -175,8 +155,7 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
         const std::string full = k + "." + printable(sk);
         const int vline = static_cast<int>(value.source().begin.line);
         const KeySpec* spec = scene_io::find_key(k, sk);
-        if (!spec)
-          return fail(vline, full + ": unknown key" + did_you_mean(sk, scene_io::keys_of(k)));
+        if (!spec) return fail(vline, full + ": " + unknown_key_error(k, sk));
         if (auto r = apply_key(s, *spec, value, material); !r.empty())
           return fail(vline, full + ": " + r);
         lines[full] = vline;
@@ -206,8 +185,12 @@ SceneLoad load_scene(const std::string& name_or_path) {
   struct stat st {};
   if (::stat(name_or_path.c_str(), &st) != 0) {
     const int err = errno;
-    if (err == ENOENT || err == ENOTDIR)
-      return error("no such file, and not a built-in scene (" + builtin_scene_names() + ")");
+    if (err == ENOENT || err == ENOTDIR) {
+      std::vector<std::string> names;
+      for (const auto& e : builtin_scenes()) names.emplace_back(e.name);
+      return error("no such file, and not a built-in scene" + did_you_mean(name_or_path, names) +
+                   " (" + builtin_scene_names() + ")");
+    }
     return error(std::string("cannot open: ") + std::strerror(err));
   }
   if (S_ISDIR(st.st_mode)) return error("is a directory, not a scene file");
@@ -239,9 +222,7 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   if (!scene_io::find_section(section))
     return where + ": " + printable(section) + ": " + unknown_section_error(section);
   const KeySpec* spec = scene_io::find_key(section, key);
-  if (!spec)
-    return where + ": " + printable(lhs) + ": unknown key" +
-           did_you_mean(key, scene_io::keys_of(section));
+  if (!spec) return where + ": " + printable(lhs) + ": " + unknown_key_error(section, key);
   // The value in TOML syntax; failing that, a bare word stands for a string
   // (--set material.model=linear).
   auto parse_value = [](const std::string& text, toml::table& out) {

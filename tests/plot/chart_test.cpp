@@ -1,7 +1,11 @@
-// The chart library: pixels of known primitives, text, log-axis ticks and mapping, the
-// Pareto front, and a PNG round trip through an independent decoder (stb_image).
+// The chart library and the study's charts, tested for what they mean rather than for
+// Cairo's pixels: the text a chart writes (the canvas logs every piece with its box),
+// where the axes put the data, that notes stay inside the drawing, one Pareto front per
+// material model, the mesh panel against n_seg, and the files in the three formats (a
+// PNG decoded by an independent decoder, SVG and PDF by their headers).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,87 +16,76 @@
 
 #include "app/plot/axis.h"
 #include "app/plot/chart.h"
-#include "app/plot/raster.h"
 #include "app/study/study_chart.h"
 
 namespace invfree {
 namespace {
 
-constexpr Rgb kWhite{1.0f, 1.0f, 1.0f};
 constexpr Rgb kRed{1.0f, 0.0f, 0.0f};
 
-bool is_white(const Image& img, int x, int y) {
-  const auto p = pixel_rgb(img, x, y);
-  return p[0] == 255 && p[1] == 255 && p[2] == 255;
+bool has_text(const Canvas& canvas, const std::string& text) {
+  for (const TextItem& t : canvas.texts())
+    if (t.text.find(text) != std::string::npos) return true;
+  return false;
 }
 
-TEST(Raster, HorizontalLineCoversItsWidthAndNothingElse) {
-  Image img = make_image(100, 60, kWhite);
-  draw_line(img, {10.0, 30.0}, {90.0, 30.0}, 4.0, kRed);  // covers rows 28..31 fully
-  for (int y = 28; y <= 31; ++y)
-    EXPECT_EQ(pixel_rgb(img, 50, y), (std::array<int, 3>{255, 0, 0})) << y;
-  EXPECT_TRUE(is_white(img, 50, 26));
-  EXPECT_TRUE(is_white(img, 50, 33));
-  EXPECT_TRUE(is_white(img, 5, 30)) << "round cap ends 2 px past the end point";
-  EXPECT_FALSE(is_white(img, 91, 30));
-  // Antialiasing: a line through pixel centres at half-integer width leaves partial rows.
-  Image aa = make_image(40, 40, kWhite);
-  draw_line(aa, {0.0, 20.0}, {40.0, 20.0}, 1.0, kRed);
-  const auto above = pixel_rgb(aa, 20, 19), below = pixel_rgb(aa, 20, 20);
-  EXPECT_EQ(above[0], 255);
-  EXPECT_GT(above[1], 0);
-  EXPECT_LT(above[1], 255) << "half covered";
-  EXPECT_EQ(below[1], above[1]) << "symmetric about y = 20";
+TEST(Canvas, PngHasItsSizeAndTheColoursDrawn) {
+  Canvas canvas(37, 23, ChartFormat::Png);
+  canvas.fill_rect(10, 5, 20, 15, kRed);
+  const std::string png = canvas.finish();
+  int w = 0, h = 0, c = 0;
+  unsigned char* data = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                                              static_cast<int>(png.size()), &w, &h, &c, 4);
+  ASSERT_NE(data, nullptr);
+  EXPECT_EQ(w, 37);
+  EXPECT_EQ(h, 23);
+  auto rgb = [&](int x, int y) {
+    const unsigned char* p = data + 4 * (y * w + x);
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  EXPECT_EQ(rgb(15, 10), (std::array<int, 3>{255, 0, 0}));
+  EXPECT_EQ(rgb(2, 2), (std::array<int, 3>{255, 255, 255})) << "the background is white";
+  EXPECT_EQ(rgb(25, 10), (std::array<int, 3>{255, 255, 255}));
+  stbi_image_free(data);
 }
 
-TEST(Raster, PolylineJointsAreNotDrawnTwice) {
-  Image img = make_image(60, 60, kWhite);
-  draw_polyline(img, {{10, 10}, {30, 30}, {50, 10}}, 3.0, kRed, 0.5);
-  // The joint pixel is covered by both segments; half-transparent red must not stack.
-  EXPECT_EQ(pixel_rgb(img, 30, 29), pixel_rgb(img, 20, 19));
+TEST(Canvas, VectorFormatsAreWhatTheySayTheyAre) {
+  for (ChartFormat f : {ChartFormat::Svg, ChartFormat::Pdf}) {
+    Canvas canvas(300, 200, f);
+    canvas.text("label", 10, 50, 20, {0, 0, 0});
+    const std::string bytes = canvas.finish();
+    if (f == ChartFormat::Svg) {
+      EXPECT_NE(bytes.find("<svg"), std::string::npos);
+      EXPECT_NE(bytes.find("width=\"300"), std::string::npos);
+    } else {
+      EXPECT_EQ(bytes.substr(0, 5), "%PDF-");
+    }
+  }
+  EXPECT_EQ(parse_chart_format("svg"), ChartFormat::Svg);
+  EXPECT_EQ(parse_chart_format("jpeg"), std::nullopt);
+  EXPECT_STREQ(chart_extension(ChartFormat::Pdf), "pdf");
 }
 
-TEST(Raster, MarkersHaveTheirShape) {
-  Image img = make_image(80, 40, kWhite);
-  draw_marker(img, {20.0, 20.0}, 8.0, MarkerShape::Circle, kRed, kRed);
-  draw_marker(img, {60.0, 20.0}, 8.0, MarkerShape::Square, kRed, kRed);
-  EXPECT_EQ(pixel_rgb(img, 20, 20), (std::array<int, 3>{255, 0, 0}));
-  // Circle of radius 8: (20 + 6.5, 20 + 6.5) pixel centre is 9.2 from the centre: outside.
-  EXPECT_TRUE(is_white(img, 26, 26));
-  // Square of half-size 0.85 * 8 = 6.8: that corner pixel is inside.
-  EXPECT_FALSE(is_white(img, 60 + 5, 20 + 5));
-  EXPECT_TRUE(is_white(img, 60 + 9, 20));
-}
-
-TEST(Raster, MeshHasNoSeamsBetweenTriangles) {
-  Image img = make_image(40, 40, kWhite);
-  // Two triangles of one colour sharing the diagonal of a square.
-  fill_mesh(img, {{5, 5}, {35, 5}, {35, 35}, {5, 35}}, {{0, 1, 2}, {0, 2, 3}}, {kRed, kRed});
-  for (int i = 6; i < 34; ++i)
-    EXPECT_EQ(pixel_rgb(img, i, i), (std::array<int, 3>{255, 0, 0})) << i;
-  EXPECT_TRUE(is_white(img, 2, 20));
-}
-
-TEST(Raster, TextInksWhereItIsDrawn) {
-  Image img = make_image(200, 60, kWhite);
-  draw_text(img, "Wg 10\u207b\u00b3 \u03bd", 10, 40, 24, {0, 0, 0});
-  int inked = 0, left = 200, right = 0;
-  for (int y = 0; y < 60; ++y)
-    for (int x = 0; x < 200; ++x)
-      if (!is_white(img, x, y)) {
-        ++inked;
-        left = std::min(left, x);
-        right = std::max(right, x);
-      }
-  EXPECT_GT(inked, 100);
-  EXPECT_GE(left, 10);
-  EXPECT_NEAR(right, 10 + text_width("Wg 10\u207b\u00b3 \u03bd", 24), 3.0);
+TEST(Canvas, TextIsMeasuredAndLoggedWithItsBox) {
+  Canvas canvas(400, 100, ChartFormat::Png);
+  const std::string s = "Wg 10\u207b\u00b3 \u03bd";
+  canvas.text(s, 200, 60, 24, {0, 0, 0}, Align::Center);
+  ASSERT_EQ(canvas.texts().size(), 1u);
+  const TextItem& t = canvas.texts()[0];
+  EXPECT_NEAR(t.x1 - t.x0, text_width(s, 24), 1e-9);
+  EXPECT_NEAR((t.x0 + t.x1) / 2.0, 200.0, 1e-9) << "centred on its anchor";
+  EXPECT_LT(t.y0, 60.0);
+  EXPECT_GT(t.y1, 60.0) << "the baseline lies inside the box (descenders below it)";
+  EXPECT_NEAR(t.y1 - t.y0, 24.0, 1.0) << "size is the font's ascent + descent";
   EXPECT_LT(text_width("ii", 20), text_width("WW", 20));
-  EXPECT_NEAR(text_width("abc", 40), 2.0 * text_width("abc", 20), 1.0);
+  EXPECT_NEAR(text_width("abc", 40), 2.0 * text_width("abc", 20), 1e-6);
   const auto lines =
       wrap_text("one two three four five six", 20, text_width("one two three", 20) + 1);
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0], "one two three");
+  canvas.text("up", 30, 50, 20, {0, 0, 0}, Align::Center, true);
+  const TextItem& v = canvas.texts()[1];
+  EXPECT_GT(v.y1 - v.y0, v.x1 - v.x0) << "vertical text is taller than wide";
 }
 
 TEST(Axis, LogTicksAreDecadesWithMinorTicksBetween) {
@@ -138,47 +131,57 @@ TEST(Axis, LinearTicksUseNiceSteps) {
   EXPECT_EQ(format_tick(0.05), "0.05");
 }
 
-TEST(Chart, LogAxisPlacesDecadesEvenly) {
+TEST(Chart, LogAxisLabelsItsDecadesEvenly) {
   ChartSpec spec;
   spec.log_x = true;
+  spec.x_label = "x axis";
+  spec.y_label = "y axis";
+  spec.title = "the title";
   spec.series.push_back({"", {1.0, 10.0, 100.0, 1000.0}, {5.0, 5.0, 5.0, 5.0}, kRed, true, false});
-  const Image img = render_chart(spec);
-  // Centres of the red markers along the row through them.
-  std::vector<double> centres;
-  int row = -1;
-  for (int y = 0; y < img.height && row < 0; ++y)
-    for (int x = 0; x < img.width; ++x)
-      if (pixel_rgb(img, x, y) == std::array<int, 3>{255, 0, 0}) {
-        row = y + 3;
-        break;
-      }
-  ASSERT_GE(row, 0) << "no marker drawn";
-  int run_start = -1;
-  for (int x = 0; x <= img.width; ++x) {
-    const bool red =
-        x < img.width && pixel_rgb(img, x, row)[0] > 200 && pixel_rgb(img, x, row)[1] < 80;
-    if (red && run_start < 0) run_start = x;
-    if (!red && run_start >= 0) {
-      centres.push_back(0.5 * (run_start + x - 1));
-      run_start = -1;
-    }
-  }
-  ASSERT_EQ(centres.size(), 4u);
-  const double step = centres[1] - centres[0];
+  const auto canvas = chart_canvas({spec}, ChartFormat::Png);
+  for (const char* s : {"x axis", "y axis", "the title"}) EXPECT_TRUE(has_text(*canvas, s)) << s;
+  // The decade labels "10" (with their exponents beside them) below the plot, left to right.
+  std::vector<double> left;
+  for (const TextItem& t : canvas->texts())
+    if (t.text == "10" && t.y0 > canvas->height() * 0.8) left.push_back(t.x0);
+  std::sort(left.begin(), left.end());
+  ASSERT_EQ(left.size(), 4u);
+  const double step = left[1] - left[0];
   EXPECT_GT(step, 100.0);
-  EXPECT_NEAR(centres[2] - centres[1], step, 1.01);
-  EXPECT_NEAR(centres[3] - centres[2], step, 1.01);
+  EXPECT_NEAR(left[2] - left[1], step, 1e-6);
+  EXPECT_NEAR(left[3] - left[2], step, 1e-6);
+}
+
+TEST(Chart, NotesStayInsideTheDrawing) {
+  ChartSpec spec;
+  spec.series.push_back({"a series with a label", {1.0, 2.0}, {1.0, 2.0}, kRed, true, true});
+  std::string long_note;
+  for (int i = 0; i < 60; ++i) long_note += "a long caption that wraps onto many lines ";
+  spec.notes = {long_note, long_note, "the last line"};
+  for (ChartFormat f : {ChartFormat::Png, ChartFormat::Svg}) {
+    const auto canvas = chart_canvas({spec, spec}, f);
+    EXPECT_GT(canvas->height(), 2 * 800) << "the notes make the panels taller";
+    int last = 0;
+    for (const TextItem& t : canvas->texts()) {
+      EXPECT_GE(t.x0, 0.0) << t.text;
+      EXPECT_GE(t.y0, 0.0) << t.text;
+      EXPECT_LE(t.x1, canvas->width()) << t.text;
+      EXPECT_LE(t.y1, canvas->height()) << t.text;
+      last += t.text == "the last line";
+    }
+    EXPECT_EQ(last, 2) << "each panel's last note is drawn";
+  }
 }
 
 TEST(Chart, SkipsPointsALogAxisCannotShowAndNeverFails) {
   ChartSpec spec;
   spec.log_y = true;
   spec.series.push_back({"bad", {1.0, 2.0, 3.0}, {-1.0, 0.0, std::nan("")}, kRed, true, true});
-  const Image img = render_chart(spec);
-  EXPECT_EQ(img.width, 1280);
-  EXPECT_EQ(img.height, 800);
-  ChartSpec empty;
-  EXPECT_EQ(render_chart(empty).rgba.size(), 1280u * 800u * 4u);
+  const auto canvas = chart_canvas({spec}, ChartFormat::Png);
+  EXPECT_EQ(canvas->width(), 1280);
+  EXPECT_EQ(canvas->height(), 800);
+  EXPECT_FALSE(canvas->finish().empty());
+  EXPECT_FALSE(chart_canvas({ChartSpec{}}, ChartFormat::Png)->finish().empty());
 }
 
 TEST(Chart, ParetoFrontKeepsOnlyUnbeatenPoints) {
@@ -187,9 +190,83 @@ TEST(Chart, ParetoFrontKeepsOnlyUnbeatenPoints) {
   EXPECT_EQ(front, (std::vector<size_t>{0, 1, 3}));
 }
 
+// A study result with rows in the h sweep (tol and n_seg of the scene).
+StudyResult synthetic_study() {
+  StudyResult r;
+  r.scene.name = "test";
+  r.scene.tol = 1e-4;
+  r.scene.h = 0.01;
+  r.scene.n_seg = 8;
+  auto row = [&](const char* method, double h, double wall, double error) {
+    StudyRow s;
+    s.method = method;
+    s.h = h;
+    s.tol = r.scene.tol;
+    s.n_seg = r.scene.n_seg;
+    s.wall_s = wall;
+    s.error = error;
+    s.failure = "ok";
+    r.rows.push_back(s);
+  };
+  row("lecture", 0.02, 1.0, 0.1);
+  row("lecture", 0.01, 2.0, 0.05);
+  row("full-eigen-clamp", 0.01, 3.0, 0.05);
+  // ARAP, against its own reference: faster and "more accurate" than everything above.
+  row("arap", 0.02, 0.5, 0.001);
+  row("arap", 0.01, 0.9, 0.0005);
+  return r;
+}
+
+const Series* find_series(const ChartSpec& spec, const std::string& prefix) {
+  for (const Series& s : spec.series)
+    if (s.label.starts_with(prefix)) return &s;
+  return nullptr;
+}
+
+TEST(StudyChart, OneParetoFrontPerModelLabelledWithH) {
+  const StudyResult r = synthetic_study();
+  const ChartSpec speed = study_panels(r)[0];
+  const Series* neo = find_series(speed, "Pareto front, neo-hookean");
+  const Series* arap = find_series(speed, "Pareto front, arap");
+  ASSERT_NE(neo, nullptr);
+  ASSERT_NE(arap, nullptr);
+  EXPECT_EQ(find_series(speed, "Pareto front, linear"), nullptr) << "no points, no front";
+  // The neo-Hookean front is made of neo-Hookean points only, though ARAP's lie below.
+  EXPECT_EQ(neo->x, (std::vector<double>{1.0, 2.0}));
+  EXPECT_EQ(neo->y, (std::vector<double>{0.1, 0.05}));
+  EXPECT_EQ(neo->point_labels, (std::vector<std::string>{"h = 0.02", "h = 0.01"}));
+  EXPECT_EQ(arap->x, (std::vector<double>{0.5, 0.9}));
+  const auto canvas = chart_canvas(study_panels(r), ChartFormat::Svg);
+  EXPECT_TRUE(has_text(*canvas, "h = 0.02"));
+  EXPECT_TRUE(has_text(*canvas, "own reference"));
+}
+
+TEST(StudyChart, MeshPanelIsAgainstNSegAndSaysWhenItsRangeIsNarrow) {
+  StudyResult r = synthetic_study();
+  for (int n : {8, 16}) {
+    StudyRow s;
+    s.method = "lecture-mesh";
+    s.h = r.scene.h;
+    s.tol = r.scene.tol;
+    s.n_seg = n;
+    s.wall_s = n * 0.1;
+    s.error = n == 8 ? 0.094 : 0.086;
+    s.failure = "ok";
+    r.rows.push_back(s);
+  }
+  ChartSpec mesh = sweeps_panels(r)[1];
+  ASSERT_EQ(mesh.series.size(), 1u);
+  EXPECT_EQ(mesh.series[0].x, (std::vector<double>{8.0, 16.0}));
+  EXPECT_NE(mesh.x_label.find("n_seg"), std::string::npos);
+  EXPECT_FALSE(mesh.log_x) << "n_seg on a linear axis";
+  EXPECT_NE(mesh.title.find("narrow y range"), std::string::npos) << mesh.title;
+  r.rows.back().error = 0.01;  // a factor of 9.4: not narrow
+  mesh = sweeps_panels(r)[1];
+  EXPECT_EQ(mesh.title.find("narrow"), std::string::npos) << mesh.title;
+}
+
 TEST(Png, RoundTripsThroughAnIndependentDecoder) {
-  Image img = make_image(37, 23, {0.2f, 0.4f, 0.6f});
-  draw_line(img, {0, 0}, {36, 22}, 2.0, kRed);
+  Image img{37, 23, std::vector<std::uint8_t>(37 * 23 * 4, 200)};
   img.rgba[4 * (5 * 37 + 7) + 1] = 123;
   const std::string path =
       (std::filesystem::temp_directory_path() / "invfree_chart_test.png").string();
@@ -205,7 +282,7 @@ TEST(Png, RoundTripsThroughAnIndependentDecoder) {
 }
 
 TEST(Png, ReportsUnwritablePathsAndEmptyImages) {
-  const Image img = make_image(4, 4, kWhite);
+  const Image img{4, 4, std::vector<std::uint8_t>(64, 255)};
   const std::string e = write_png("/nonexistent-dir/x.png", img);
   EXPECT_NE(e.find("/nonexistent-dir/x.png"), std::string::npos) << e;
   EXPECT_NE(write_png("/tmp/never.png", Image{}), "");

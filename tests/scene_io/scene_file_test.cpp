@@ -628,7 +628,9 @@ TEST(BadInput, FilesThatAreNotScenes) {
   expect_bad("/dev/zero", "/dev/zero: not a regular file");
   expect_bad("/dev/urandom", "/dev/urandom: not a regular file");
   expect_bad("", ": no such file");
-  expect_bad("comprss", "comprss: no such file, and not a built-in scene (compress, drop)");
+  expect_bad("comprss",
+             "comprss: no such file, and not a built-in scene (did you mean \"compress\"?) "
+             "(compress, drop)");
   expect_bad(dir + "/empty.toml/x", "no such file");  // a file used as a directory
   // Unreadable: /proc/self/mem is a regular file that fails every read at offset 0.
   expect_bad("/proc/self/mem", "/proc/self/mem: could not read the file");

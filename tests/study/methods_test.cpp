@@ -7,6 +7,8 @@
 #include <map>
 #include <set>
 
+#include "app/format_number.h"
+#include "app/study/stability.h"
 #include "app/study/stress_scenes.h"
 #include "scene_io/scene_file.h"
 
@@ -130,6 +132,40 @@ TEST(StressScenes, DurationCoversTheCeilingTravel) {
   EXPECT_NEAR(stability_duration(s), 3.1, 1e-9);
   s.has_ceiling = false;
   EXPECT_NEAR(stability_duration(s), 2.0, 1e-9);
+}
+
+TEST(StressScenes, QuickRunsReachTheSquashOfEveryScene) {
+  for (const StressScene& stress : stress_scenes()) {
+    std::string error;
+    const auto s = load_stress_scene(stress, &error);
+    ASSERT_TRUE(s) << error;
+    ASSERT_TRUE(s->has_ceiling && s->ceiling_velocity < 0.0) << stress.name;
+    const double squash = (s->ceiling_y - s->ceiling_stop) / -s->ceiling_velocity;
+    const double quick = quick_stability_duration(*s);
+    EXPECT_GE(quick, squash - 1e-9) << stress.name << ": the quick run stops before the squash";
+    EXPECT_LT(quick, squash + s->h + 1e-9) << stress.name << ": whole steps, no settling";
+    EXPECT_LT(quick, stability_duration(*s)) << stress.name;
+  }
+}
+
+TEST(StabilityTable, FailuresAreGivenInSceneTimeAndInTheMethodsSteps) {
+  StabilityCell implicit;
+  implicit.fail_step = 249;
+  implicit.h = 0.01;
+  EXPECT_EQ(failure_time(implicit), "t = 2.49 s, step 249");
+  StabilityCell substeps;
+  substeps.fail_step = 2202;
+  substeps.h = 0.0005;
+  substeps.substeps = 20;
+  EXPECT_EQ(failure_time(substeps), "t = 1.1 s, substep 2,202 of h/20");
+  EXPECT_EQ(format_for_people(336935.4), "336,935");
+  EXPECT_EQ(format_for_people(-1234567.0), "-1,234,567");
+  EXPECT_EQ(format_for_people(10.0), "10");
+  EXPECT_EQ(format_for_people(0.125), "0.125");
+  StabilityResult quick;
+  quick.quick = true;
+  EXPECT_NE(stability_markdown(quick).find("**A quick run**"), std::string::npos);
+  EXPECT_EQ(stability_markdown(StabilityResult{}).find("quick run"), std::string::npos);
 }
 
 }  // namespace

@@ -118,6 +118,7 @@ TEST(StabilityCommand, QuickSweepClassifiesEveryCell) {
   EXPECT_TRUE(is_png(dir / "stability.png"));
   const std::string md = slurp(dir / "stability.md");
   EXPECT_NE(md.find("| method |"), std::string::npos);
+  EXPECT_NE(md.find("**A quick run**"), std::string::npos) << "the table says it was quick";
   const auto rows = read_csv(dir / "stability.csv");
   ASSERT_EQ(rows[0],
             (std::vector<std::string>{"method", "scene", "verdict", "fail_step", "wall_s"}));
