@@ -31,6 +31,10 @@ WorldBox scene_world_box(const SceneDef& scene) {
   }
   const double band = std::max(0.15 * (y1 - y0), 0.1 * scene.side);  // visible plane depth
   const double x_half = half * spread + 0.15 * scene.side;
+  if (scene.has_ground && scene.ground_normal.x() != 0.0) {  // a slope: its lower end shows
+    const Vec2 n = ground_unit_normal(scene);
+    y0 = std::min(y0, scene.ground_y - std::abs(n.x() / std::max(n.y(), 0.087)) * x_half);
+  }
   return {-x_half, x_half, y0 - band, y1 + band};
 }
 

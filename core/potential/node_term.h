@@ -16,13 +16,16 @@ struct NodeState {
   double mass = 0.0;
   double x_start = 0.0;  // x at the step's start (lagged friction's reference)
   double ceiling = 0.0;  // the ceiling's height, an unknown of the step when it has one
+  double y_start = 0.0;  // y at the step's start (friction on a sloped ground)
 };
 
 // Gradient and Hessian entries of one node: with respect to (x_i, y_i), and the coupling
-// of y_i to the ceiling unknown c (its gradient, its diagonal, the (y_i, c) entry).
+// of y_i to the ceiling unknown c (its gradient, its diagonal, the (y_i, c) entry), and
+// the (x_i, y_i) entry (nonzero only for a sloped ground).
 struct NodeDerivatives {
   double gx = 0.0, gy = 0.0, hxx = 0.0, hyy = 0.0;
   double gc = 0.0, hcc = 0.0, hyc = 0.0;
+  double hxy = 0.0;
 };
 
 }  // namespace invfree
