@@ -1,7 +1,8 @@
 // The course: the built-in scenes that walk through the public solid-sim-tutorial's
 // chapters in order (course-1 ... course-5, then the lecture's demo `compress`), each with
 // its chapter's one-line idea. The live window's picker lists them first, in chapter order,
-// and its panel shows the selected chapter's idea (docs/scenes.md has the same table).
+// and its panel shows the selected chapter's idea (docs/scenes.md has the same table);
+// `compress`, the lecture's own scene, keeps its panel as it was (no idea line).
 #pragma once
 
 #include <algorithm>
@@ -14,7 +15,7 @@ namespace invfree::live {
 struct CourseChapter {
   const char* scene;
   int chapter;
-  const char* idea;
+  const char* idea;  // nullptr: none shown
 };
 
 inline constexpr CourseChapter kCourse[] = {
@@ -23,7 +24,7 @@ inline constexpr CourseChapter kCourse[] = {
     {"course-3-contact", 3, "contact: the IPC barrier and the filtered line search"},
     {"course-4-friction", 4, "lagged friction: sliding down a slope"},
     {"course-5-moving-dirichlet", 5, "a moving Dirichlet boundary: squashed by the ceiling"},
-    {"compress", 6, "inversion-free neo-Hookean elasticity (the lecture's demo)"},
+    {"compress", 6, nullptr},
 };
 
 // The chapter of a scene name, or nullptr when it is not one of the course's.

@@ -112,7 +112,7 @@ void scene_section(LiveController& lc, PanelState& ps) {
   ImGui::SameLine();
   if (ImGui::SmallButton("restore")) lc.restore_scene_defaults();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the scene's own settings, from its initial state");
-  if (const CourseChapter* c = course_chapter(scenes[sel].label))
+  if (const CourseChapter* c = course_chapter(scenes[sel].label); c && c->idea)
     ImGui::TextWrapped("Chapter %d: %s", c->chapter, c->idea);
 
   SceneDef next = lc.settings();

@@ -211,11 +211,18 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   double y = pad + res.atlas->ascent(kTitle);
   res.add_text(scene.name, kTitle, x0, y, kInk);
   y += 1.25 * body;
-  res.add_text(model_display_name(scene.model), kBody, x0, y, kMutedInk);
-  y += 1.3 * body;
-  res.add_text("μ = " + format_si(scene.lame.mu, "Pa"), kBody, x0, y, kMutedInk);
-  y += 1.3 * body;
-  res.add_text("λ = " + format_si(scene.lame.lambda, "Pa"), kBody, x0, y, kMutedInk);
+  if (scene.has_mass_spring) {  // the course's springs: their stiffness, no Lame parameters
+    res.add_text("mass-spring", kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+    res.add_text("k = " + format_si(scene.spring_stiffness, "N/m"), kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+  } else {
+    res.add_text(model_display_name(scene.model), kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+    res.add_text("μ = " + format_si(scene.lame.mu, "Pa"), kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+    res.add_text("λ = " + format_si(scene.lame.lambda, "Pa"), kBody, x0, y, kMutedInk);
+  }
   y += 2.0 * body;
   res.add_text(format_time(state.time, scene.h), kBody, x0, y, kInk);
   y += 1.3 * body;
