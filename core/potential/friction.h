@@ -71,12 +71,7 @@ struct GroundFriction {
       d.hxx += d2;
       return;
     }
-    const double tx = tangent.x(), ty = tangent.y();
-    d.gx += d1 * tx;
-    d.gy += d1 * ty;
-    d.hxx += d2 * tx * tx;
-    d.hyy += d2 * ty * ty;
-    d.hxy += d2 * tx * ty;
+    add_along(d, tangent.x(), tangent.y(), d1, d2);
   }
 };
 

@@ -28,4 +28,14 @@ struct NodeDerivatives {
   double hxy = 0.0;
 };
 
+// Adds a term f(u.x) whose variable is the node's position along the unit direction u (a
+// sloped ground's normal or tangent): gradient f' u, Hessian f'' u u^T (d1 = f', d2 = f'').
+inline void add_along(NodeDerivatives& d, double ux, double uy, double d1, double d2) {
+  d.gx += d1 * ux;
+  d.gy += d1 * uy;
+  d.hxx += d2 * ux * ux;
+  d.hyy += d2 * uy * uy;
+  d.hxy += d2 * ux * uy;
+}
+
 }  // namespace invfree

@@ -38,12 +38,7 @@ struct GroundBarrier {
       d.hyy += d2;
       return;
     }
-    const double nx = normal.x(), ny = normal.y();
-    d.gx += d1 * nx;
-    d.gy += d1 * ny;
-    d.hxx += d2 * nx * nx;
-    d.hyy += d2 * ny * ny;
-    d.hxy += d2 * nx * ny;
+    add_along(d, normal.x(), normal.y(), d1, d2);
   }
 };
 
