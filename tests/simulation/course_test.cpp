@@ -65,7 +65,7 @@ TEST_P(CourseScene, FollowsThePythonDemoToATenthOfAMillimetre) {
     if (worst >= 1e-4) break;
   }
   EXPECT_GT(moved, 0.05) << name << ": the reference hardly moves";
-  RecordProperty("max_difference_m", std::to_string(worst));
+  RecordProperty("max_difference_m", worst);
 }
 
 INSTANTIATE_TEST_SUITE_P(Course, CourseScene,
