@@ -65,7 +65,9 @@ TEST_P(CourseScene, FollowsThePythonDemoToATenthOfAMillimetre) {
     if (worst >= 1e-4) break;
   }
   EXPECT_GT(moved, 0.05) << name << ": the reference hardly moves";
-  RecordProperty("max_difference_m", worst);
+  std::ostringstream text;
+  text << worst;
+  RecordProperty("max_difference_m", text.str());
 }
 
 INSTANTIATE_TEST_SUITE_P(Course, CourseScene,
