@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
+#include "app/live/course.h"
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
 #include "app/output_files.h"
@@ -29,11 +30,13 @@ struct LiveCommandOptions {
   live::LiveOptions live;
 };
 
-// The scene picker: every built-in scene, then the files named on the command line; the
+// The scene picker: every built-in scene (the course's first, in chapter order), then the files
+// named on the command line; the
 // --scene one is selected and gets the --set overrides.
 int build_scenes(const LiveCommandOptions& opt, live::LiveOptions* out) {
   std::vector<std::string> names;
   for (const auto& e : builtin_scenes()) names.emplace_back(e.name);
+  live::put_course_first(names);
   auto add = [&](const std::string& n) {
     for (size_t i = 0; i < names.size(); ++i)
       if (names[i] == n) return static_cast<int>(i);

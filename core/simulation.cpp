@@ -6,6 +6,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "scene/fixed_nodes.h"
 #include "scene/initial_state.h"
 #include "solver/step_workspace.h"
 
@@ -40,12 +41,13 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
   const int n = sim.mesh.node_count();
   for (int i = 0; i < n; ++i) {
     const double y = x[2 * i + 1];
-    if ((s.has_ground && !(y > s.ground_y)) || (s.has_ceiling && !(y < ceiling))) {
+    if ((s.has_ground && !(ground_gap(s, x[2 * i], y) > 0.0)) ||
+        (s.has_ceiling && !(y < ceiling))) {
       *message = "node " + std::to_string(i) + " reached or crossed a plane";
       return StepStatus::Penetrated;
     }
   }
-  if (!model_allows_inversion(s.model)) {
+  if (s.has_triangle_elasticity() && !model_allows_inversion(s.model)) {
     for (int t = 0; t < sim.mesh.triangle_count(); ++t) {
       if (!(triangle_deformation_gradient(sim.mesh, x.data(), t).determinant() > 0.0)) {
         *message = "triangle " + std::to_string(t) + " inverted (det F <= 0)";
@@ -66,17 +68,25 @@ void fill_problem(Simulation& sim) {
   p.h = s.h;
   p.x_start = sim.x;
   p.x_tilde = sim.x + s.h * sim.v;
-  p.elasticity = {s.model, s.lame, s.projection, s.inversion_filter};
+  p.elasticity = {s.model, s.lame, s.projection, s.inversion_filter, s.has_triangle_elasticity()};
+  p.springs.on = s.has_mass_spring;
+  p.springs.stiffness = s.spring_stiffness;
+  p.springs.project = s.projection != HessianProjection::None;
   p.gravity = {s.has_gravity, s.gravity};
   const BarrierParams barrier = barrier_params(s);
   p.ground.on = s.has_ground;
   p.ground.y0 = s.ground_y;
   p.ground.barrier = barrier;
+  p.ground.sloped = !(s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0);
+  p.ground.normal = ground_unit_normal(s);
   p.friction.on = s.has_ground && s.friction > 0.0;
+  p.friction.sloped = p.ground.sloped;
+  p.friction.tangent = Vec2(p.ground.normal.y(), -p.ground.normal.x());
   if (p.friction.on) {
     p.friction.weight.resize(n);
     for (int i = 0; i < n; ++i)
-      p.friction.weight[i] = friction_weight(s.friction, sim.x[2 * i + 1] - s.ground_y, barrier);
+      p.friction.weight[i] =
+          friction_weight(s.friction, ground_gap(s, sim.x[2 * i], sim.x[2 * i + 1]), barrier);
     p.friction.eps_u = kFrictionEpsV * s.h;
   }
   p.ceiling.on = s.has_ceiling;
@@ -184,7 +194,9 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
   ceiling_new = s.has_ceiling ? next_ceiling_nominal(s, sim.ceiling_nominal) : 0.0;
   VecX& grad = ws.newton.gradient;
   grad.setZero(2 * n);
-  add_elastic_gradient(sim.mesh, s.model, s.lame, sim.x, 1.0, grad);
+  if (s.has_triangle_elasticity())
+    add_elastic_gradient(sim.mesh, s.model, s.lame, sim.x, 1.0, grad);
+  if (p.springs.on) add_mass_spring_gradient(p.springs, sim.x.data(), 1.0, grad.data());
   VecX& v_new = ws.v_new;
   v_new = sim.v;
   for (int i = 0; i < n; ++i) {
@@ -196,10 +208,16 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
     for_each_node_term(p, [&](const auto& term) {
       if (!term.on) return;
       if constexpr (std::is_same_v<std::decay_t<decltype(term)>, GroundFriction>) {
-        const double gap = y - p.ground.y0;
-        if (gap < p.ground.barrier.dhat)
-          d.gx += friction_derivative(
-              s.h * sim.v[2 * i], friction_weight(s.friction, gap, p.ground.barrier), term.eps_u);
+        const double gap = p.ground.gap(x, y);
+        if (gap < p.ground.barrier.dhat) {
+          const Vec2 t = term.tangent;
+          const double slip =
+              term.sloped ? s.h * t.dot(sim.v.segment<2>(2 * i)) : s.h * sim.v[2 * i];
+          const double f = friction_derivative(
+              slip, friction_weight(s.friction, gap, p.ground.barrier), term.eps_u);
+          d.gx += term.sloped ? f * t.x() : f;
+          if (term.sloped) d.gy += f * t.y();
+        }
       } else {
         term.add_derivatives(node, 1.0, d);
       }
@@ -208,6 +226,7 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
       p.pull.add_derivatives(sim.x.segment<2>(2 * i), 1.0, d.gx, d.gy, d.hxx, d.hyy);
     v_new.segment<2>(2 * i) += s.h / sim.node_mass[i] * Vec2(-d.gx, -d.gy);
   }
+  for (int dof : p.fixed.dofs) v_new[dof] = 0.0;
   ws.x_new = sim.x + s.h * v_new;
   report.energy = total_energy(sim);
   return report;
@@ -228,7 +247,18 @@ Simulation make_simulation(const SceneDef& scene) {
   sim.ceiling_y = sim.ceiling_nominal = scene.ceiling_y;
   sim.workspace = std::make_unique<StepWorkspace>();
   NewtonWorkspace& ws = sim.workspace->newton;
-  ws.hessian = build_sparse_hessian(sim.mesh, scene.has_ceiling);
+  StepWorkspace& step_ws = *sim.workspace;
+  if (scene.has_mass_spring) step_ws.springs = mesh_springs(sim.mesh);
+  ws.hessian =
+      build_sparse_hessian(sim.mesh, scene.has_ceiling, spring_node_pairs(step_ws.springs));
+  if (scene.has_mass_spring) {
+    step_ws.spring_slots = spring_slots(step_ws.springs, ws.hessian);
+    step_ws.problem.springs.springs = &step_ws.springs;
+    step_ws.problem.springs.slots = &step_ws.spring_slots;
+  }
+  const std::vector<int> fixed = select_fixed_nodes(scene, sim.mesh);
+  step_ws.problem.fixed = make_fixed_dofs(fixed, ws.hessian);
+  for (int node : fixed) sim.v.segment<2>(2 * node).setZero();
   ws.min_node_mass = *std::min_element(sim.node_mass.begin(), sim.node_mass.end());
   if (scene.integrator == Integrator::ImplicitEuler) prepare_solver(sim);
   const int dofs = 2 * sim.mesh.node_count();
@@ -241,7 +271,9 @@ Simulation make_simulation(const SceneDef& scene) {
 bool needs_new_mesh(const SceneDef& old, const SceneDef& next) {
   return old.side != next.side || old.n_seg != next.n_seg || old.density != next.density ||
          old.mass != next.mass || old.jitter != next.jitter || old.seed != next.seed ||
-         old.has_ceiling != next.has_ceiling;
+         old.has_ceiling != next.has_ceiling || old.has_mass_spring != next.has_mass_spring ||
+         old.has_fixed != next.has_fixed || old.fixed_corners != next.fixed_corners ||
+         old.fixed_box_min != next.fixed_box_min || old.fixed_box_max != next.fixed_box_max;
 }
 
 void update_scene(Simulation& sim, const SceneDef& scene) {
@@ -292,7 +324,7 @@ double min_plane_gap(const Simulation& sim) {
   double gap = std::numeric_limits<double>::infinity();
   for (int i = 0; i < sim.mesh.node_count(); ++i) {
     const double y = sim.x[2 * i + 1];
-    if (sim.scene.has_ground) gap = std::min(gap, y - sim.scene.ground_y);
+    if (sim.scene.has_ground) gap = std::min(gap, ground_gap(sim.scene, sim.x[2 * i], y));
     if (sim.scene.has_ceiling) gap = std::min(gap, sim.ceiling_y - y);
   }
   return gap;
@@ -301,7 +333,11 @@ double min_plane_gap(const Simulation& sim) {
 double total_energy(const Simulation& sim) {
   const SceneDef& s = sim.scene;
   const Gravity gravity{s.has_gravity, s.gravity};
-  double e = elastic_energy(sim.mesh, s.model, s.lame, sim.x);
+  double e = s.has_triangle_elasticity() ? elastic_energy(sim.mesh, s.model, s.lame, sim.x) : 0.0;
+  if (s.has_mass_spring) {
+    const MassSpring springs{true, s.spring_stiffness, true, &sim.workspace->springs, nullptr};
+    e += mass_spring_energy(springs, sim.x.data());
+  }
   for (int i = 0; i < sim.mesh.node_count(); ++i) {
     const NodeState node{i, sim.x[2 * i], sim.x[2 * i + 1], sim.node_mass[i], 0.0, 0.0};
     e += 0.5 * sim.node_mass[i] * sim.v.segment<2>(2 * i).squaredNorm();

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "app/live/course.h"
 #include "app/live/key_bindings.h"
 #include "app/live/log_slider.h"
 #include "app/live/param_limits.h"
@@ -186,6 +187,8 @@ void scene_section(LiveController& lc, PanelState& ps) {
   ImGui::SameLine();
   if (ImGui::SmallButton("restore")) lc.restore_scene_defaults();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the scene's own settings, from its initial state");
+  if (const CourseChapter* c = course_chapter(scenes[sel].label); c && c->idea)
+    ImGui::TextWrapped("Chapter %d: %s", c->chapter, c->idea);
 
   SceneDef next = lc.settings();
   const Model models[] = {Model::NeoHookean, Model::StableNeoHookean, Model::Arap, Model::Linear};

@@ -33,7 +33,18 @@ WorldBox scene_world_box(const SceneDef& scene) {
   }
   const double band = std::max(0.15 * (y1 - y0), 0.1 * scene.side);  // visible plane depth
   const double x_half = half * spread + 0.15 * scene.side;
-  return {-x_half, x_half, y0 - band, y1 + band};
+  double x0 = -x_half, x1 = x_half;
+  if (scene.has_ground && scene.ground_normal.x() != 0.0) {
+    // A slope (the course's 4_friction): room for the body to slide one side length down
+    // it, and the ground's lower end in the picture.
+    const Vec2 n = ground_unit_normal(scene);
+    (n.x() > 0.0 ? x1 : x0) += (n.x() > 0.0 ? 1.0 : -1.0) * scene.side;
+    const double drop = std::abs(n.x() / std::max(n.y(), 0.087)) * std::max(-x0, x1);
+    y0 = std::min(y0, scene.ground_y - drop);
+  }
+  // Hanging from fixed nodes with no ground (the course's 2_dirichlet): room to sag a side.
+  if (scene.has_fixed && scene.has_gravity && !scene.has_ground) y0 -= scene.side;
+  return {x0, x1, y0 - band, y1 + band};
 }
 
 Camera fit_camera(const WorldBox& box, const PixelRect& rect) {

@@ -106,6 +106,22 @@ DetFSummary summarize_det_f(const FrameState& state) {
   return d;
 }
 
+bool ground_is_sloped(const SceneDef& s) {
+  return !(s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0);
+}
+
+// The sloped ground's surface line between pixel columns x0 and x1 (a ground steeper than
+// 85 degrees is drawn at 85).
+std::pair<Vec2, Vec2> ground_surface(const Camera& cam, const SceneDef& s, double x0, double x1) {
+  const Vec2 n = ground_unit_normal(s);
+  const double slope = -n.x() / std::max(n.y(), 0.087);  // dy/dx of the surface
+  auto at = [&](double px) {
+    const double wx = (px - cam.origin.x()) / cam.pixels_per_metre;
+    return Vec2(px, cam.to_pixel(Vec2(wx, s.ground_y + slope * wx)).y());
+  };
+  return {at(x0), at(x1)};
+}
+
 // Each plane: a filled half-plane whose surface layer is hatched (res.hatched; the drawing
 // convention for a rigid support), so that a large ceiling does not fill the picture with
 // stripes; the rest of the half-plane is a plain fill (res.shapes).
@@ -113,7 +129,13 @@ void add_plane_fills(FrameVertices& res, const FrameLayout& L, const Camera& cam
                      const FrameState& state) {
   const double px0 = L.plot.x, px1 = L.plot.x + L.plot.w, py0 = L.plot.y, py1 = L.plot.y + L.plot.h;
   const double band = std::round(std::max(10.0, 30.0 * L.scale));
-  if (state.scene.has_ground) {
+  if (state.scene.has_ground && ground_is_sloped(state.scene)) {
+    // A sloped ground (the course's 4_friction): a plain fill below its surface line.
+    const auto [a, b] = ground_surface(cam, state.scene, px0, px1);
+    add_triangle(res.shapes, a, b, {px1, std::max(py1, b.y())}, kPlaneFill);
+    add_triangle(res.shapes, a, {px1, std::max(py1, b.y())}, {px0, std::max(py1, a.y())},
+                 kPlaneFill);
+  } else if (state.scene.has_ground) {
     const double gy = cam.to_pixel(Vec2(0.0, state.scene.ground_y)).y();
     const double y_end = std::max(gy, py1), y_band = std::min(gy + band, y_end);
     add_rect(res.hatched, px0, gy, px1, y_band, kPlaneFill);
@@ -158,7 +180,10 @@ void add_strokes(FrameVertices& res, const FrameLayout& L, const Camera& cam,
   const double outline = std::max(1.25, 1.8 * s);
   for (const auto& [a, b] : res.boundary_edges) add_segment(world, p[a], p[b], outline, kOutline);
   const double plane_line = std::max(1.5, 2.5 * s);
-  if (state.scene.has_ground) {
+  if (state.scene.has_ground && ground_is_sloped(state.scene)) {
+    const auto [a, b] = ground_surface(cam, state.scene, px0 - 10, px1 + 10);
+    add_segment(world, a, b, plane_line, kPlaneEdge);
+  } else if (state.scene.has_ground) {
     const double gy = cam.to_pixel(Vec2(0.0, state.scene.ground_y)).y();
     add_segment(world, {px0 - 10, gy + 0.5 * plane_line}, {px1 + 10, gy + 0.5 * plane_line},
                 plane_line, kPlaneEdge);
@@ -219,11 +244,18 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   double y = pad + res.atlas->ascent(kTitle);
   res.add_text(scene.name, kTitle, x0, y, kInk);
   y += 1.25 * body;
-  res.add_text(model_display_name(scene.model), kBody, x0, y, kMutedInk);
-  y += 1.3 * body;
-  res.add_text("μ = " + format_si(scene.lame.mu, "Pa"), kBody, x0, y, kMutedInk);
-  y += 1.3 * body;
-  res.add_text("λ = " + format_si(scene.lame.lambda, "Pa"), kBody, x0, y, kMutedInk);
+  if (scene.has_mass_spring) {  // the course's springs: their stiffness, no Lame parameters
+    res.add_text("mass-spring", kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+    res.add_text("k = " + format_si(scene.spring_stiffness, "N/m"), kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+  } else {
+    res.add_text(model_display_name(scene.model), kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+    res.add_text("μ = " + format_si(scene.lame.mu, "Pa"), kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+    res.add_text("λ = " + format_si(scene.lame.lambda, "Pa"), kBody, x0, y, kMutedInk);
+  }
   y += 2.0 * body;
   res.add_text(format_time(state.time, scene.h), kBody, x0, y, kInk);
   y += 1.3 * body;

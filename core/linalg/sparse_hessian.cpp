@@ -6,13 +6,17 @@
 
 namespace invfree {
 
-namespace {
-int find_slot(const Eigen::SparseMatrix<double>& m, int row, int col) {
+int sparse_slot(const Eigen::SparseMatrix<double>& m, int row, int col) {
   const int* inner = m.innerIndexPtr();
   const int begin = m.outerIndexPtr()[col], end = m.outerIndexPtr()[col + 1];
   const int* it = std::lower_bound(inner + begin, inner + end, row);
   if (it == inner + end || *it != row) throw std::logic_error("sparse pattern is missing an entry");
   return static_cast<int>(it - inner);
+}
+
+namespace {
+int find_slot(const Eigen::SparseMatrix<double>& m, int row, int col) {
+  return sparse_slot(m, row, col);
 }
 // Greedy colouring of the triangle chunks: each chunk takes the lowest colour not used by
 // an earlier chunk sharing one of its nodes (a per-node bit mask of the colours touching
@@ -48,7 +52,8 @@ void build_assembly_plan(const Mesh& mesh, SparseHessian& h) {
 
 }  // namespace
 
-SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
+SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
+                                   std::span<const std::array<int, 2>> extra_pairs) {
   const int n_nodes = mesh.node_count();
   const int n_dof = 2 * n_nodes + (with_ceiling ? 1 : 0);
   std::vector<Eigen::Triplet<double>> entries;
@@ -58,6 +63,14 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
       for (int b = 0; b < 6; ++b)
         entries.emplace_back(2 * tri[a / 2] + a % 2, 2 * tri[b / 2] + b % 2, 0.0);
   for (int i = 0; i < n_dof; ++i) entries.emplace_back(i, i, 0.0);
+  for (int i = 0; i < n_nodes; ++i) {  // (within a triangle's block already, unless isolated)
+    entries.emplace_back(2 * i, 2 * i + 1, 0.0);
+    entries.emplace_back(2 * i + 1, 2 * i, 0.0);
+  }
+  for (const auto& pair : extra_pairs)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        entries.emplace_back(2 * pair[a / 2] + a % 2, 2 * pair[b / 2] + b % 2, 0.0);
   const int c = 2 * n_nodes;
   if (with_ceiling)
     for (int i = 0; i < n_nodes; ++i) {
@@ -79,6 +92,11 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
   }
   h.diagonal_slots.resize(n_dof);
   for (int i = 0; i < n_dof; ++i) h.diagonal_slots[i] = find_slot(h.matrix, i, i);
+  h.node_xy_slots.resize(2 * n_nodes);
+  for (int i = 0; i < n_nodes; ++i) {
+    h.node_xy_slots[2 * i] = find_slot(h.matrix, 2 * i, 2 * i + 1);
+    h.node_xy_slots[2 * i + 1] = find_slot(h.matrix, 2 * i + 1, 2 * i);
+  }
   if (with_ceiling) {
     h.ceiling_dof = c;
     h.ceiling_slots.resize(2 * n_nodes);

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <array>
+#include <span>
 #include <vector>
 
 #include "scene/mesh.h"
@@ -22,6 +24,7 @@ struct SparseHessian {
   std::vector<int> triangle_slots;  // 36 per triangle, row-major over the local 6x6
   std::vector<int> diagonal_slots;  // one per degree of freedom
   std::vector<int> ceiling_slots;   // per node: (y_i, c) then (c, y_i)
+  std::vector<int> node_xy_slots;   // per node: (x_i, y_i) then (y_i, x_i)
   int ceiling_dof = -1;             // -1 when the scene has no ceiling
   // Assembly plan. Colour c owns chunks chunk_order[colour_begin[c] .. colour_begin[c+1]);
   // chunk k holds triangles [k * chunk_size, min((k + 1) * chunk_size, triangle count)).
@@ -36,6 +39,12 @@ struct SparseHessian {
   void eliminate_ceiling();
 };
 
-SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling);
+// extra_pairs: node pairs coupled by a term beyond the triangles (the mass-spring
+// potential's second diagonals); their 2x2 blocks join the pattern.
+SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
+                                   std::span<const std::array<int, 2>> extra_pairs = {});
+// The position of entry (row, col) in the matrix's value array; throws when the pattern
+// has no such entry.
+int sparse_slot(const Eigen::SparseMatrix<double>& m, int row, int col);
 
 }  // namespace invfree

@@ -22,7 +22,10 @@ struct Elasticity {
   HessianProjection projection = HessianProjection::Diagonal;
   bool inversion_filter = true;  // bound steps so that no triangle inverts (when det F > 0 is
                                  // required by the model)
-  bool filters_inversions() const { return inversion_filter && !model_allows_inversion(model); }
+  bool on = true;                // off for a mass-spring scene: no triangle term at all
+  bool filters_inversions() const {
+    return on && inversion_filter && !model_allows_inversion(model);
+  }
 };
 
 inline Mat2 triangle_deformation_gradient(const Mesh& mesh, const double* x, int t) {

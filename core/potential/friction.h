@@ -6,6 +6,9 @@
 //   D''(u) = mu_f lambda (2/eps_u - 2|u|/eps_u^2) for |u| < eps_u, else 0  (>= 0).
 // The weight w_i = mu_f lambda_i is 0 for a node farther than dhat from the ground.
 // Explicit integration uses the same law on the current slip h v (friction_force).
+// On a sloped ground the slip is u = t.(x_i - x_i^n) along the plane's unit tangent t,
+// gradient D'(u) t and Hessian D''(u) t t^T (the tutorial's T = I - n n^T in 2D); the
+// horizontal ground keeps u = x_i - x_i^n exactly.
 #pragma once
 
 #include <cmath>
@@ -13,6 +16,7 @@
 
 #include "potential/barrier.h"
 #include "potential/node_term.h"
+#include "types.h"
 
 namespace invfree {
 
@@ -45,18 +49,29 @@ struct GroundFriction {
   bool on = false;
   std::vector<double> weight;  // mu_f lambda_i per node, lagged
   double eps_u = 0.0;          // eps_v h
+  bool sloped = false;
+  Vec2 tangent = Vec2(1.0, 0.0);  // unit; read only when sloped
 
+  double slip(const NodeState& s) const {
+    return sloped ? tangent.x() * (s.x - s.x_start) + tangent.y() * (s.y - s.y_start)
+                  : s.x - s.x_start;
+  }
   double value(const NodeState& s) const {
     const double w = weight[s.index];
-    return w > 0.0 ? friction_value(s.x - s.x_start, w, eps_u) : 0.0;
+    return w > 0.0 ? friction_value(slip(s), w, eps_u) : 0.0;
   }
   void add_derivatives(const NodeState& s, double scale, NodeDerivatives& d) const {
     const double w = weight[s.index];
-    if (w > 0.0) {
-      const double u = s.x - s.x_start;
-      d.gx += scale * friction_derivative(u, w, eps_u);
-      d.hxx += scale * friction_second_derivative(u, w, eps_u);
+    if (!(w > 0.0)) return;
+    const double u = slip(s);
+    const double d1 = scale * friction_derivative(u, w, eps_u);
+    const double d2 = scale * friction_second_derivative(u, w, eps_u);
+    if (!sloped) {
+      d.gx += d1;
+      d.hxx += d2;
+      return;
     }
+    add_along(d, tangent.x(), tangent.y(), d1, d2);
   }
 };
 

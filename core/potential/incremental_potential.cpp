@@ -53,6 +53,10 @@ void add_node_terms(const StepProblem& p, const double* z, int begin, int end, d
     g[iy] = d.gy;
     values[diag[ix]] += d.hxx;
     values[diag[iy]] += d.hyy;
+    if (d.hxy != 0.0) {
+      values[hess.node_xy_slots[ix]] += d.hxy;
+      values[hess.node_xy_slots[iy]] += d.hxy;
+    }
     if (p.ceiling.on) {
       ceiling_g += d.gc;
       ceiling_h += d.hcc;
@@ -68,7 +72,7 @@ void add_node_terms(const StepProblem& p, const double* z, int begin, int end, d
 
 double ip_energy(const StepProblem& p, const VecX& z) {
   const int n = p.node_count();
-  const int nt = p.mesh->triangle_count();
+  const int nt = p.elasticity.on ? p.mesh->triangle_count() : 0;
   const double* zp = z.data();
   const BlockSplit tri = split_blocks(nt, kTriangleBlock, kMaxBlocks);
   const BlockSplit nodes = split_blocks(n, kNodeBlock, kMaxBlocks);
@@ -98,6 +102,7 @@ double ip_energy(const StepProblem& p, const VecX& z) {
   double e = h2 * elastic + rest;
   if (p.ceiling.on) e += p.ceiling_penalty.value(z[2 * n]);
   if (p.pull.on) e += p.pull.value(z.segment<2>(2 * p.pull.node), h2);
+  if (p.springs.on) e += h2 * mass_spring_energy(p.springs, zp);
   return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
 }
 
@@ -123,22 +128,25 @@ void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient, Sp
 
   // Elasticity, one colour at a time: no two chunks of a colour share a node (no locks).
   const bool parallel = p.mesh->triangle_count() >= kParallelTriangles;
-  visit_model(p.elasticity.model, [&](auto m) {
-    using M = decltype(m);
-    for (int colour = 0; colour < hess.colour_count(); ++colour) {
-      const int first = hess.colour_begin[colour], count = hess.colour_begin[colour + 1] - first;
-      auto chunk = [&](int k) {
-        const int begin = hess.chunk_order[first + k] * hess.chunk_size;
-        const int end = std::min(p.mesh->triangle_count(), begin + hess.chunk_size);
-        add_elastic_derivatives_range<M>(*p.mesh, p.elasticity, zp, begin, end, h2, g, hess);
-      };
-      if (parallel) {
-        pool.run(count, chunk);
-      } else {
-        for (int k = 0; k < count; ++k) chunk(k);
+  if (p.elasticity.on)
+    visit_model(p.elasticity.model, [&](auto m) {
+      using M = decltype(m);
+      for (int colour = 0; colour < hess.colour_count(); ++colour) {
+        const int first = hess.colour_begin[colour], count = hess.colour_begin[colour + 1] - first;
+        auto chunk = [&](int k) {
+          const int begin = hess.chunk_order[first + k] * hess.chunk_size;
+          const int end = std::min(p.mesh->triangle_count(), begin + hess.chunk_size);
+          add_elastic_derivatives_range<M>(*p.mesh, p.elasticity, zp, begin, end, h2, g, hess);
+        };
+        if (parallel) {
+          pool.run(count, chunk);
+        } else {
+          for (int k = 0; k < count; ++k) chunk(k);
+        }
       }
-    }
-  });
+    });
+
+  if (p.springs.on) add_mass_spring_derivatives(p.springs, zp, h2, g, values);
 
   if (p.pull.on) {
     const int ix = 2 * p.pull.node, iy = ix + 1;
@@ -160,6 +168,7 @@ void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient, Sp
       hess.eliminate_ceiling();
     }
   }
+  if (p.fixed.on) eliminate_fixed_dofs(p.fixed, g, values);
 }
 
 double largest_feasible_step(const StepProblem& p, const VecX& z, const VecX& dir) {

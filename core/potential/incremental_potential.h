@@ -4,12 +4,15 @@
 //                   - sum_i m_i g.x_i                               gravity.h
 //                   + sum_i b(y_i - y_ground) + sum_i b(c - y_i)    plane_barrier.h
 //                   + sum_i D_i(x_i)                                friction.h
-//                   + k_pull/2 |x_p - target|^2 ]                   pull_spring.h
+//                   + k_pull/2 |x_p - target|^2                     pull_spring.h
+//                   + sum_s 1/2 k l^2 (|d_s|^2/l^2 - 1)^2 ]         mass_spring.h
 //           + 1/2 k (c - c_target)^2                                ceiling_penalty.h
 // over the node coordinates x (2N) and, when the scene has a ceiling, its height c as one
 // extra unknown. Each term is one file of free functions and is evaluated only when the
 // scene switches it on; the terms are listed once, in for_each_node_term below and in the
-// sums of incremental_potential.cpp.
+// sums of incremental_potential.cpp. A mass-spring scene (the course's chapters 1-5) has
+// springs instead of the triangles' elasticity; fixed nodes (fixed_dofs.h) are eliminated
+// from the gradient and Hessian.
 // Inputs: a StepProblem (everything frozen for the step) and z = [x; c].
 // Outputs: the value (+infinity outside the feasible set: an inverted neo-Hookean
 // triangle or a node on or through a plane), the gradient and projected Hessian, and the
@@ -21,9 +24,11 @@
 #include "linalg/sparse_hessian.h"
 #include "potential/ceiling_penalty.h"
 #include "potential/elasticity.h"
+#include "potential/fixed_dofs.h"
 #include "potential/friction.h"
 #include "potential/gravity.h"
 #include "potential/inertia.h"
+#include "potential/mass_spring.h"
 #include "potential/plane_barrier.h"
 #include "potential/pull_spring.h"
 #include "scene/mesh.h"
@@ -44,12 +49,19 @@ struct StepProblem {
   CeilingBarrier ceiling;  // on: the ceiling's height is the unknown z[2N]
   CeilingPenalty ceiling_penalty;
   PullSpring pull;
+  MassSpring springs;
+  FixedDofs fixed;
 
   int node_count() const { return mesh->node_count(); }
   int dof_count() const { return 2 * node_count() + (ceiling.on ? 1 : 0); }
   NodeState node_state(const double* z, int i) const {
-    return {i,          z[2 * i],       z[2 * i + 1],
-            (*mass)[i], x_start[2 * i], ceiling.on ? z[2 * node_count()] : 0.0};
+    return {i,
+            z[2 * i],
+            z[2 * i + 1],
+            (*mass)[i],
+            x_start[2 * i],
+            ceiling.on ? z[2 * node_count()] : 0.0,
+            x_start[2 * i + 1]};
   }
 };
 

@@ -4,6 +4,9 @@
 // b(d) of barrier.h. The plane filter bounds a step so that every node keeps at least 10%
 // of its gap to each plane (the demo's BarrierEnergy.init_step_size), so the barrier never
 // sees d <= 0 and every accepted state stays strictly between the planes.
+// The ground may be sloped (the course's 4_friction): unit normal n, through (0, y0), gap
+// d = n.(x_i - (0, y0)), gradient b' n, Hessian b'' n n^T. The horizontal ground keeps
+// its own arithmetic (d = y_i - y0), so its results are bit-identical to before.
 #pragma once
 
 #include <algorithm>
@@ -18,14 +21,24 @@ struct GroundBarrier {
   bool on = false;
   double y0 = 0.0;
   BarrierParams barrier;
+  bool sloped = false;
+  Vec2 normal = Vec2(0.0, 1.0);  // unit; read only when sloped
 
-  double value(const NodeState& s) const { return barrier_value(s.y - y0, barrier); }
+  double gap(double x, double y) const {
+    return sloped ? normal.x() * x + normal.y() * (y - y0) : y - y0;
+  }
+  double value(const NodeState& s) const { return barrier_value(gap(s.x, s.y), barrier); }
   void add_derivatives(const NodeState& s, double scale, NodeDerivatives& d) const {
-    const double gap = s.y - y0;
-    if (gap < barrier.dhat) {
-      d.gy += scale * barrier_derivative(gap, barrier);
-      d.hyy += scale * barrier_second_derivative(gap, barrier);
+    const double g = gap(s.x, s.y);
+    if (g >= barrier.dhat) return;
+    const double d1 = scale * barrier_derivative(g, barrier);
+    const double d2 = scale * barrier_second_derivative(g, barrier);
+    if (!sloped) {
+      d.gy += d1;
+      d.hyy += d2;
+      return;
     }
+    add_along(d, normal.x(), normal.y(), d1, d2);
   }
 };
 
@@ -57,7 +70,12 @@ inline double plane_step(const GroundBarrier& ground, const CeilingBarrier& ceil
   const int c = 2 * node_count;
   for (int i = 0; i < node_count; ++i) {
     const int y = 2 * i + 1;
-    if (ground.on && p[y] < 0.0) alpha = std::min(alpha, 0.9 * (x[y] - ground.y0) / -p[y]);
+    if (ground.on && ground.sloped) {
+      const double closing = ground.normal.x() * p[y - 1] + ground.normal.y() * p[y];
+      if (closing < 0.0) alpha = std::min(alpha, 0.9 * ground.gap(x[y - 1], x[y]) / -closing);
+    } else if (ground.on && p[y] < 0.0) {
+      alpha = std::min(alpha, 0.9 * (x[y] - ground.y0) / -p[y]);
+    }
     if (ceiling.on) {
       const double closing = p[c] - p[y];  // rate of change of the gap c - y_i
       if (closing < 0.0) alpha = std::min(alpha, 0.9 * (x[c] - x[y]) / -closing);

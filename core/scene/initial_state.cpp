@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "scene/fixed_nodes.h"
+
 namespace invfree {
 
 namespace {
@@ -23,6 +25,9 @@ double next_uniform(std::uint64_t& state) {
 VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
   VecX x(2 * mesh.node_count());
   for (int i = 0; i < mesh.node_count(); ++i) x.segment<2>(2 * i) = mesh.rest[i];
+  if (scene.initial_stretch != Vec2(1.0, 1.0))
+    for (int i = 0; i < mesh.node_count(); ++i)
+      x.segment<2>(2 * i) = x.segment<2>(2 * i).cwiseProduct(scene.initial_stretch);
   if (scene.jitter > 0.0) {
     std::uint64_t state = scene.seed;
     const double amplitude = scene.jitter * scene.side / scene.n_seg;
@@ -34,7 +39,8 @@ VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
 std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
   const Mesh mesh = square_mesh(s.side, s.n_seg);
   const VecX x = initial_positions(s, mesh);
-  const bool needs_det_f_positive = !model_allows_inversion(s.model);
+  if (auto problem = fixed_rule_problem(s, mesh)) return problem;
+  const bool needs_det_f_positive = s.has_triangle_elasticity() && !model_allows_inversion(s.model);
   for (const auto& tri : mesh.triangles) {
     // The rest triangle's area must be a normal double: the rest shape's inverse and the
     // node masses divide by it or scale with it.
@@ -61,9 +67,11 @@ std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
                                               "mesh.n_seg"};
   for (int i = 0; i < mesh.node_count(); ++i) {
     const double y = x[2 * i + 1];
-    if (s.has_ground && !(y > s.ground_y)) {
+    if (s.has_ground && !(ground_gap(s, x[2 * i], y) > 0.0)) {
       auto causes = placement;
       causes.push_back("ground.enabled");
+      causes.push_back("ground.normal");
+      causes.push_back("initial.stretch");
       return SceneProblem{"ground.y", "the square starts on or through the ground", causes};
     }
     if (s.has_ceiling && !(y < s.ceiling_y)) {

@@ -50,7 +50,36 @@ constexpr BoundedValue kBounded[] = {
     {"ceiling.stop", [](const SceneDef& s) { return s.ceiling_stop; }, kFinite},
     {"barrier.dhat", [](const SceneDef& s) { return s.dhat; }, kPositive},
     {"barrier.kappa", [](const SceneDef& s) { return s.kappa; }, kPositive},
+    {"mass_spring.stiffness", [](const SceneDef& s) { return s.spring_stiffness; }, kPositive},
 };
+
+constexpr struct {
+  FixedCorners corners;
+  const char* name;
+} kCornerNames[] = {
+    {FixedCorners::None, "none"},
+    {FixedCorners::TopLeft, "top-left"},
+    {FixedCorners::TopRight, "top-right"},
+    {FixedCorners::BottomLeft, "bottom-left"},
+    {FixedCorners::BottomRight, "bottom-right"},
+    {FixedCorners::Top, "top"},
+    {FixedCorners::Bottom, "bottom"},
+    {FixedCorners::Left, "left"},
+    {FixedCorners::Right, "right"},
+    {FixedCorners::All, "all"},
+};
+
+// The course's vector values: finite, a ground normal that is not zero, a positive stretch.
+std::optional<SceneProblem> find_vector_problem(const SceneDef& s) {
+  if (!s.ground_normal.allFinite()) return SceneProblem{"ground.normal", "must be finite", {}};
+  if (!(s.ground_normal.norm() > 0.0))
+    return SceneProblem{"ground.normal", "must not be zero (it is the plane's normal)", {}};
+  if (!s.initial_stretch.allFinite() || !(s.initial_stretch.minCoeff() > 0.0))
+    return SceneProblem{"initial.stretch", "both factors must be finite and > 0", {}};
+  if (!s.fixed_box_min.allFinite()) return SceneProblem{"fixed.box_min", "must be finite", {}};
+  if (!s.fixed_box_max.allFinite()) return SceneProblem{"fixed.box_max", "must be finite", {}};
+  return std::nullopt;
+}
 
 }  // namespace
 
@@ -62,6 +91,28 @@ std::optional<Integrator> integrator_from_name(std::string_view name) {
   if (name == "implicit-euler") return Integrator::ImplicitEuler;
   if (name == "symplectic-euler") return Integrator::SymplecticEuler;
   return std::nullopt;
+}
+
+const char* fixed_corners_name(FixedCorners c) {
+  for (const auto& n : kCornerNames)
+    if (n.corners == c) return n.name;
+  return "none";
+}
+
+std::optional<FixedCorners> fixed_corners_from_name(std::string_view name) {
+  for (const auto& n : kCornerNames)
+    if (name == n.name) return n.corners;
+  return std::nullopt;
+}
+
+Vec2 ground_unit_normal(const SceneDef& s) {
+  return s.ground_normal.normalized();
+}
+
+double ground_gap(const SceneDef& s, double x, double y) {
+  if (s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0) return y - s.ground_y;  // flat
+  const Vec2 n = ground_unit_normal(s);
+  return n.x() * x + n.y() * (y - s.ground_y);
 }
 
 bool ValueBounds::contains(double v) const {
@@ -110,6 +161,7 @@ std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
   if (!s.initial_velocity.allFinite())
     return SceneProblem{"initial.velocity", "must be finite", {}};
   if (!s.gravity.allFinite()) return SceneProblem{"gravity.g", "must be finite", {}};
+  if (auto problem = find_vector_problem(s)) return problem;
   // Relations between switched-on terms.
   if (s.has_ceiling && s.has_ground) {
     const std::vector<std::string> planes = {"ground.y", "ground.enabled", "ceiling.enabled"};

@@ -22,6 +22,22 @@ enum class Integrator { ImplicitEuler, SymplecticEuler };
 const char* integrator_name(Integrator i);
 std::optional<Integrator> integrator_from_name(std::string_view name);
 
+// Named corners of the rest mesh's bounding box that a scene holds fixed (a bit each).
+enum class FixedCorners : unsigned {
+  None = 0,
+  BottomLeft = 1,
+  BottomRight = 2,
+  TopLeft = 4,
+  TopRight = 8,
+  Bottom = 3,
+  Top = 12,
+  Left = 5,
+  Right = 10,
+  All = 15
+};
+const char* fixed_corners_name(FixedCorners c);
+std::optional<FixedCorners> fixed_corners_from_name(std::string_view name);
+
 struct SceneDef {
   std::string name = "compress";
   // [mesh]
@@ -62,11 +78,35 @@ struct SceneDef {
   // [barrier]
   double dhat = 0.01;
   double kappa = 1e5;
+  // The course's additions (solid-sim-tutorial chapters 1-5), each off by default.
+  // [mass_spring]: springs on the mesh's edges and both diagonals of every cell
+  // (potential/mass_spring.h) instead of the triangles' elasticity.
+  bool has_mass_spring = false;
+  double spring_stiffness = 1e5;  // k (N/m)
+  // [fixed]: nodes held at their initial positions (Dirichlet, eliminated by the solver),
+  // chosen by rules in rest space over all nodes: corners of the rest bounding box and/or
+  // the nodes inside a box (an empty box, min > max, selects none). scene/fixed_nodes.h.
+  bool has_fixed = false;
+  FixedCorners fixed_corners = FixedCorners::None;
+  Vec2 fixed_box_min = Vec2(1.0, 1.0);
+  Vec2 fixed_box_max = Vec2(-1.0, -1.0);
+  // The ground's normal (any slope; normalised where used): the plane passes through
+  // (0, ground_y). (0, 1) is the horizontal ground.
+  Vec2 ground_normal = Vec2(0.0, 1.0);
+  // [initial] stretch: rest positions scaled by (sx, sy) about the origin at t = 0.
+  Vec2 initial_stretch = Vec2(1.0, 1.0);
 
   bool operator==(const SceneDef&) const = default;
   double contact_area() const { return side / n_seg; }
   bool has_contact() const { return has_ground || has_ceiling; }
+  // The triangles' elasticity (material.*) is a term of this scene's potential.
+  bool has_triangle_elasticity() const { return !has_mass_spring; }
 };
+
+// The ground's unit normal, and a point's signed distance to the ground plane through
+// (0, ground_y); exactly y - ground_y for the horizontal ground.
+Vec2 ground_unit_normal(const SceneDef& s);
+double ground_gap(const SceneDef& s, double x, double y);
 
 // The largest n_seg accepted anywhere: keeps every node, DOF and sparse-matrix index well
 // inside int. Smaller meshes can still be refused by check_mesh_fits_in_memory.

@@ -243,6 +243,11 @@ constexpr SectionSpec kSections[] = {
     {"ceiling", &SceneDef::has_ceiling,
      "a plane moving down until it stops, squashing the square; no section, no ceiling"},
     {"barrier", nullptr, "the IPC log barrier of both planes"},
+    {"mass_spring", &SceneDef::has_mass_spring,
+     "springs on the mesh's edges and both diagonals of every cell instead of the "
+     "material's triangles (the course's chapters 1-5); no section, no springs"},
+    {"fixed", &SceneDef::has_fixed,
+     "nodes held at their initial positions, chosen in rest space; no section, none"},
 };
 
 constexpr const char* kMassChoices[] = {"uniform", "lumped"};
@@ -250,6 +255,9 @@ constexpr const char* kModelChoices[] = {"neo-hookean", "linear", "arap", "stabl
 constexpr const char* kProjectionChoices[] = {"diagonal", "full", "none"};
 constexpr const char* kIntegratorChoices[] = {"implicit-euler", "symplectic-euler"};
 constexpr const char* kLinearSolverChoices[] = {"auto", "ldlt", "cholmod", "pcg"};
+constexpr const char* kCornerChoices[] = {"none",         "top-left", "top-right", "bottom-left",
+                                          "bottom-right", "top",      "bottom",    "left",
+                                          "right",        "all"};
 
 const KeySpec kKeys[] = {
     number<&SceneDef::side>("mesh", "side", "m", "edge length of the square"),
@@ -310,6 +318,24 @@ const KeySpec kKeys[] = {
                                     "it stops once its start-of-step height is at or below this"),
     number<&SceneDef::dhat>("barrier", "dhat", "m", "distance below which the barrier acts"),
     number<&SceneDef::kappa>("barrier", "kappa", "Pa", "barrier stiffness"),
+    vector<&SceneDef::initial_stretch>(
+        "initial", "stretch", "", "rest positions scaled by [sx, sy] about the origin at t = 0"),
+    vector<&SceneDef::ground_normal>("ground", "normal", "",
+                                     "the ground's normal (any slope); the plane passes through "
+                                     "(0, y)"),
+    boolean<&SceneDef::has_mass_spring>("mass_spring", "enabled",
+                                        "false switches the springs off (the material's "
+                                        "triangles instead)"),
+    number<&SceneDef::spring_stiffness>("mass_spring", "stiffness", "N/m",
+                                        "k of every spring: 1/2 k l^2 (|d|^2 / l^2 - 1)^2"),
+    boolean<&SceneDef::has_fixed>("fixed", "enabled", "false frees every node"),
+    choice<&SceneDef::fixed_corners, fixed_corners_from_name, fixed_corners_name>(
+        "fixed", "corners", kCornerChoices,
+        "corners of the rest mesh's bounding box held fixed (\"top\": top-left and top-right)"),
+    vector<&SceneDef::fixed_box_min>("fixed", "box_min", "m",
+                                     "nodes whose rest position is in [box_min, box_max] are "
+                                     "held fixed (min > max: no box)"),
+    vector<&SceneDef::fixed_box_max>("fixed", "box_max", "m", "the box's upper corner"),
 };
 
 }  // namespace

@@ -6,7 +6,7 @@ namespace invfree {
 
 int stop_friction_crossings(const StepProblem& problem, const VecX& z, VecX& trial,
                             FrictionCrossingScratch& s) {
-  if (!problem.friction.on) return 0;
+  if (!problem.friction.on || problem.friction.sloped) return 0;  // stops along x only
   const int n = problem.node_count();
   if (static_cast<int>(s.stopped.size()) != n) {
     s.stopped.assign(n, 0);

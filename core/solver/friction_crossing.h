@@ -16,7 +16,8 @@
 // guarantee is checked again: a triangle left below 10% of its area at z (the filter's
 // own rule) gets its stopped nodes back where the step put them, until none is. The
 // ground filter is unaffected (only x moves), and the line search still accepts a trial
-// only when the incremental potential does not increase.
+// only when the incremental potential does not increase. On a sloped ground (the course's
+// 4_friction) no node is stopped: the slip is then along the slope, not x.
 // Inputs: the step's problem (mesh, x^n, friction weights, eps_u), the current z, the
 // straight trial z + alpha p in `trial`, and scratch space (sized on first use).
 // Output: `trial` with the crossings stopped; returns how many nodes were stopped.

@@ -68,10 +68,12 @@ struct Newton {
     request.threshold = settings.tol * p.h;
     if (p.elasticity.projection != HessianProjection::None) {
       // Every eigenvalue of the projected Hessian is at least the smallest node mass, the
-      // ceiling's penalty stiffness, or 1 for the eliminated ceiling (linear_solver.h).
+      // ceiling's penalty stiffness, or 1 for the eliminated ceiling or fixed nodes
+      // (linear_solver.h).
       double lambda = ws.min_node_mass;
       if (p.ceiling.on)
         lambda = std::min(lambda, p.ceiling_penalty.fixed ? 1.0 : p.ceiling_penalty.stiffness);
+      if (p.fixed.on) lambda = std::min(lambda, 1.0);  // the fixed nodes' identity rows
       request.lambda_min = lambda;
       request.forcing = settings.forcing;
     } else {

@@ -14,6 +14,8 @@ struct StepWorkspace {
   StepProblem problem;
   NewtonWorkspace newton;
   VecX z, x_new, v_new;
+  std::vector<Spring> springs;    // a mass-spring scene's (problem.springs points here)
+  std::vector<int> spring_slots;  // 16 per spring
 };
 
 }  // namespace invfree

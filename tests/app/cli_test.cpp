@@ -156,7 +156,9 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --steps 99999999999999999999", "--steps"},
       {"simulate --steps", "--steps"},
       {"simulate --scene", "--scene"},
-      {"simulate --scene ''", ": no such file, and not a built-in scene (compress, drop)"},
+      {"simulate --scene ''",
+       ": no such file, and not a built-in scene (compress, course-1-mass-spring, "
+       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop)"},
       {"simulate --scene comprss", "comprss: no such file, and not a built-in scene"},
       {"simulate --scene " + dir + "/subdir", dir + "/subdir: is a directory, not a scene file"},
       {"simulate --scene " + dir + "/binary.toml", dir + "/binary.toml: not a text file"},

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -373,7 +374,11 @@ TEST(LiveController, InvalidSettingsAreRefusedAndMeshChangesRestart) {
   EXPECT_EQ(lc.simulation().step_count, 0);
   EXPECT_EQ(lc.settings().h, 0.005);
   EXPECT_EQ(lc.settings().n_seg, 8);
-  lc.select_scene(1);
+  const auto choices = compress_choices();
+  const auto drop = std::find_if(choices.begin(), choices.end(),
+                                 [](const SceneChoice& c) { return c.label == "drop"; });
+  ASSERT_NE(drop, choices.end());
+  lc.select_scene(static_cast<int>(drop - choices.begin()));
   EXPECT_EQ(lc.settings().name, "drop");
   EXPECT_EQ(lc.settings().n_seg, load_builtin_scene("drop").scene->n_seg);
   EXPECT_FALSE(lc.settings().has_ceiling);

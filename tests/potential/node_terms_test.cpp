@@ -148,5 +148,53 @@ TEST(NodeTerms, PullSpringAndCeilingPenaltyMatchFiniteDifferences) {
                 1e-5 * std::max(1.0, std::abs(penalty.gradient(c))));
 }
 
+// A sloped ground (the course's 4_friction): the barrier along the unit normal and the
+// friction along the tangent, their gradient and whole 2x2 Hessian (x-y entry included)
+// against central differences in x and y.
+template <class Term>
+void expect_planar_derivatives_match(const Term& term, const NodeState& s, double step,
+                                     const char* what) {
+  NodeDerivatives d;
+  term.add_derivatives(s, 1.0, d);
+  const double g[2] = {d.gx, d.gy};
+  const double h[2][2] = {{d.hxx, d.hxy}, {d.hxy, d.hyy}};
+  for (int k = 0; k < 2; ++k) {
+    const double fd = (term.value(with(s, k, coordinate(s, k) + step)) -
+                       term.value(with(s, k, coordinate(s, k) - step))) /
+                      (2 * step);
+    EXPECT_NEAR(g[k], fd, 1e-5 * std::max({1.0, std::abs(g[k]), std::abs(fd)})) << what << k;
+    NodeDerivatives dp, dm;
+    term.add_derivatives(with(s, k, coordinate(s, k) + step), 1.0, dp);
+    term.add_derivatives(with(s, k, coordinate(s, k) - step), 1.0, dm);
+    const double col[2] = {(dp.gx - dm.gx) / (2 * step), (dp.gy - dm.gy) / (2 * step)};
+    for (int r = 0; r < 2; ++r)
+      EXPECT_NEAR(h[r][k], col[r], 1e-4 * std::max({1.0, std::abs(h[r][k]), std::abs(col[r])}))
+          << what << ": Hessian " << r << k;
+  }
+}
+
+TEST(NodeTerms, SlopedGroundBarrierAndFrictionMatchFiniteDifferences) {
+  const Vec2 n = Vec2(0.1, 1.0).normalized();
+  GroundBarrier ground{true, -1.0, kBarrier, true, n};
+  for (double f : gaps()) {  // a node at gap f dhat above the slope, somewhere along it
+    const Vec2 p = Vec2(0.3, -1.0 - 0.1 * 0.3 / 1.0) + f * kBarrier.dhat * n;
+    NodeState s{0, p.x(), p.y(), 1.0, 0.0, 0.0};
+    EXPECT_NEAR(ground.gap(p.x(), p.y()), f * kBarrier.dhat, 1e-12);
+    expect_planar_derivatives_match(ground, s, 1e-4 * f * kBarrier.dhat, "sloped ground");
+  }
+  GroundFriction friction;
+  friction.on = true;
+  friction.weight = {2.5};
+  friction.eps_u = 1e-5;
+  friction.sloped = true;
+  friction.tangent = Vec2(n.y(), -n.x());
+  for (double u : {-3e-5, -1.2e-5, -9e-6, -4e-6, 1e-7, 6e-6, 2e-5}) {  // slips along t
+    const Vec2 start(0.2, -0.5), p = start + u * friction.tangent + 1e-3 * n;
+    NodeState s{0, p.x(), p.y(), 1.0, start.x(), 0.0, start.y()};
+    EXPECT_NEAR(friction.slip(s), u, 1e-15);
+    expect_planar_derivatives_match(friction, s, 1e-3 * friction.eps_u, "sloped friction");
+  }
+}
+
 }  // namespace
 }  // namespace invfree

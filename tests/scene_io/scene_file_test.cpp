@@ -46,7 +46,9 @@ TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
         << stem << ": stress-*.toml are the stress scenes, the others the built-in ones";
   }
   EXPECT_EQ(files, embedded.size());
-  EXPECT_EQ(builtin_scene_names(), "compress, drop");
+  EXPECT_EQ(builtin_scene_names(),
+            "compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
+            "course-4-friction, course-5-moving-dirichlet, drop");
 }
 
 // SceneDef's defaults are the reference demo (scene/scene.h): `compress` is the struct as
@@ -63,8 +65,10 @@ TEST(BuiltinScenes, CompressIsTheDefaultSceneAndDropItsVariant) {
   expected.has_ceiling = false;
   expected.friction = 0.0;
   EXPECT_TRUE(*drop.scene == expected);
-  EXPECT_EQ(load_builtin_scene("stress-h0.1").error,
-            "stress-h0.1: not a built-in scene (compress, drop)");
+  EXPECT_EQ(
+      load_builtin_scene("stress-h0.1").error,
+      "stress-h0.1: not a built-in scene (compress, course-1-mass-spring, course-2-dirichlet, "
+      "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop)");
 }
 
 TEST(SceneFiles, SerialisationRoundTrips) {
@@ -171,7 +175,9 @@ TEST(SceneFiles, MissingFileAndUnknownName) {
   const SceneLoad load = load_scene("/nonexistent/scene.toml");
   ASSERT_FALSE(load.scene);
   EXPECT_EQ(load.error,
-            "/nonexistent/scene.toml: no such file, and not a built-in scene (compress, drop)");
+            "/nonexistent/scene.toml: no such file, and not a built-in scene (compress, "
+            "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
+            "course-5-moving-dirichlet, drop)");
 }
 
 TEST(Overrides, ApplyAndValidate) {
@@ -244,6 +250,14 @@ const std::map<std::string, Kind>& key_kinds() {
       {"ceiling.stop", Kind::Number},
       {"barrier.dhat", Kind::Number},
       {"barrier.kappa", Kind::Number},
+      {"initial.stretch", Kind::Vec2},
+      {"ground.normal", Kind::Vec2},
+      {"mass_spring.enabled", Kind::Bool},
+      {"mass_spring.stiffness", Kind::Number},
+      {"fixed.enabled", Kind::Bool},
+      {"fixed.corners", Kind::Enum},
+      {"fixed.box_min", Kind::Vec2},
+      {"fixed.box_max", Kind::Vec2},
   };
   return kinds;
 }
@@ -439,6 +453,30 @@ TEST(BadInput, OutOfRangeValuesInAFile) {
       {"[ceiling]\ny = -3\n", "bad.toml:2: ceiling.y: the square starts on or through the ceiling"},
       {"[mesh]\nside = 3\n[ground]\ny = -1\n",
        "ground.y: the square starts on or through the ground"},
+      // The course's additions: springs, fixed nodes, a sloped ground, a stretched start.
+      {"[mass_spring]\nstiffness = -1e3\n",
+       "bad.toml:2: mass_spring.stiffness: must be a finite number > 0"},
+      {"[mass_spring]\nstiffness = 0\n",
+       "bad.toml:2: mass_spring.stiffness: must be a finite number > 0"},
+      {"[ground]\nnormal = [0.0, 0.0]\n",
+       "bad.toml:2: ground.normal: must not be zero (it is the plane's normal)"},
+      {"[ground]\nnormal = [0.0, -1.0]\n",
+       "bad.toml:2: ground.normal: the square starts on or through the ground"},
+      {"[fixed]\ncorners = \"middle\"\n", "bad.toml:2: fixed.corners: unknown value \"middle\""},
+      {"[fixed]\ncorners = \"none\"\n",
+       "bad.toml:2: fixed.corners: the [fixed] rules select no node"},
+      {"[fixed]\nbox_min = [2.0, 2.0]\nbox_max = [3.0, 3.0]\n",
+       "bad.toml:2: fixed.box_min: the box [2, 3] x [2, 3] holds no node of the rest mesh"},
+      {"[fixed]\nbox_min = [0.1, 0.1]\nbox_max = [0.2, 0.2]\n",
+       "fixed.box_min: the box [0.1, 0.2] x [0.1, 0.2] holds no node of the rest mesh"},
+      {"[initial]\nstretch = [0.0, 1.0]\n",
+       "bad.toml:2: initial.stretch: both factors must be finite and > 0"},
+      {"[initial]\nstretch = [1.0, -1.0]\n",
+       "bad.toml:2: initial.stretch: both factors must be finite and > 0"},
+      {"[initial]\nstretch = [1.0, -1.0]\n[mass_spring]\n",
+       "initial.stretch: both factors must be finite and > 0"},
+      {"[initial]\nstretch = [1.6, 1.0]\n[ground]\nnormal = [1.0, 0.2]\ny = 0.0\n",
+       "the square starts on or through the ground"},
       // A start that neo-Hookean cannot step from.
       {"[mesh]\njitter = 0.49\nn_seg = 16\n",
        "mesh.jitter: the initial mesh has an inverted triangle"},
@@ -460,6 +498,10 @@ TEST(BadInput, BoundaryValuesAreAccepted) {
       "[ceiling]\ny = 0.5000001\n",
       "[mesh]\nn_seg = 4.0\n",
       "[material]\nmodel = \"linear\"\n[mesh]\njitter = 0.49\nn_seg = 16\n",  // invertible model
+      "[mass_spring]\n[mesh]\njitter = 0.49\nn_seg = 16\n",                   // springs may invert
+      "[fixed]\nbox_min = [-0.5, -0.5]\nbox_max = [-0.5, 0.5]\n",             // the left edge
+      "[fixed]\ncorners = \"bottom-right\"\n",
+      "[ground]\nnormal = [0.1, 1.0]\ny = -1\n",
   };
   for (const char* text : good) {
     const SceneLoad load = parse_scene_toml(text, "good.toml");
@@ -619,7 +661,10 @@ TEST(BadInput, FilesThatAreNotScenes) {
     expect_clean_error(load.error, expected, path);
   };
   expect_bad(dir + "/missing.toml",
-             dir + "/missing.toml: no such file, and not a built-in scene (compress, drop)");
+             dir +
+                 "/missing.toml: no such file, and not a built-in scene (compress, "
+                 "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
+                 "course-5-moving-dirichlet, drop)");
   expect_bad(dir + "/missing/deeper.toml", "no such file");
   expect_bad(dir, dir + ": is a directory, not a scene file");
   expect_bad(dir + "/binary.toml", dir + "/binary.toml: not a text file");
@@ -630,7 +675,8 @@ TEST(BadInput, FilesThatAreNotScenes) {
   expect_bad("", ": no such file");
   expect_bad("comprss",
              "comprss: no such file, and not a built-in scene (did you mean \"compress\"?) "
-             "(compress, drop)");
+             "(compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
+             "course-4-friction, course-5-moving-dirichlet, drop)");
   expect_bad(dir + "/empty.toml/x", "no such file");  // a file used as a directory
   // Unreadable: /proc/self/mem is a regular file that fails every read at offset 0.
   expect_bad("/proc/self/mem", "/proc/self/mem: could not read the file");

@@ -1,0 +1,46 @@
+// The course: the built-in scenes that walk through the public solid-sim-tutorial's
+// chapters in order (course-1 ... course-5, then the lecture's demo `compress`), each with
+// its chapter's one-line idea. The live window's picker lists them first, in chapter order,
+// and its panel shows the selected chapter's idea (docs/scenes.md has the same table);
+// `compress`, the lecture's own scene, keeps its panel as it was (no idea line).
+#pragma once
+
+#include <algorithm>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace invfree::live {
+
+struct CourseChapter {
+  const char* scene;
+  int chapter;
+  const char* idea;  // nullptr: none shown
+};
+
+inline constexpr CourseChapter kCourse[] = {
+    {"course-1-mass-spring", 1, "implicit Euler as minimisation: a stretched mass-spring square"},
+    {"course-2-dirichlet", 2, "Dirichlet boundary: hanging from two fixed corners"},
+    {"course-3-contact", 3, "contact: the IPC barrier and the filtered line search"},
+    {"course-4-friction", 4, "lagged friction: sliding down a slope"},
+    {"course-5-moving-dirichlet", 5, "a moving Dirichlet boundary: squashed by the ceiling"},
+    {"compress", 6, nullptr},
+};
+
+// The chapter of a scene name, or nullptr when it is not one of the course's.
+inline const CourseChapter* course_chapter(std::string_view scene) {
+  for (const auto& c : kCourse)
+    if (scene == c.scene) return &c;
+  return nullptr;
+}
+
+// The course's scenes first, in chapter order, then the others in their given order.
+inline void put_course_first(std::vector<std::string>& names) {
+  std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+    const CourseChapter* ca = course_chapter(a);
+    const CourseChapter* cb = course_chapter(b);
+    return ca && (!cb || ca->chapter < cb->chapter);
+  });
+}
+
+}  // namespace invfree::live

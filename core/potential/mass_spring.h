@@ -1,0 +1,57 @@
+// Mass-spring elasticity, the course's chapters 1-5 (solid-sim-tutorial's
+// MassSpringEnergy.py): one spring per mesh edge plus the second diagonal of every cell
+// (the tutorial's square mesh connects both diagonals), each with the energy
+//   E = 1/2 k l^2 (|d|^2 / l^2 - 1)^2,   d = x_i - x_j, l its rest length,
+//   dE/dx_i = 2 k (|d|^2 / l^2 - 1) d = -dE/dx_j,
+//   Hessian [A -A; -A A],  A = 2k / l^2 (2 d d^T + (|d|^2 - l^2) I).
+// The 4x4's eigenvalues are twice A's and two zeros, and A's are 2k/l^2 (3|d|^2 - l^2)
+// along d and 2k/l^2 (|d|^2 - l^2) across it, so the PSD projection of the 4x4 (the
+// tutorial's make_PSD) is [B -B; -B B] with B = A's eigenvalues clamped at zero, in closed
+// form. A spring of zero length has A = -2k I, projected to 0.
+// Inputs: the springs (rest data), k, node positions x (2 per node). Outputs: the energy,
+// gradient and (projected) Hessian scattered into a SparseHessian through 16 slots per
+// spring. Springs allow any deformation (no inversion filter).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "linalg/sparse_hessian.h"
+#include "scene/mesh.h"
+#include "types.h"
+
+namespace invfree {
+
+struct Spring {
+  int i = 0, j = 0;
+  double rest_length2 = 0.0;  // l^2
+};
+
+// The mesh's edges, then for every pair of triangles that share their longest edge (a
+// cell's diagonal) the other diagonal; ordered and without duplicates.
+std::vector<Spring> mesh_springs(const Mesh& mesh);
+// The node pairs of the springs, for the Hessian's pattern.
+std::vector<std::array<int, 2>> spring_node_pairs(const std::vector<Spring>& springs);
+// 16 slots per spring: rows (2i, 2i+1, 2j, 2j+1) x the same columns, row-major.
+std::vector<int> spring_slots(const std::vector<Spring>& springs, const SparseHessian& hessian);
+
+double spring_energy(const Spring& s, double k, const Vec2& xi, const Vec2& xj);
+Vec2 spring_gradient(const Spring& s, double k, const Vec2& xi, const Vec2& xj);  // wrt x_i
+// A, or its PSD projection B when `project`.
+Mat2 spring_hessian_block(const Spring& s, double k, const Vec2& xi, const Vec2& xj, bool project);
+
+struct MassSpring {
+  bool on = false;
+  double stiffness = 0.0;  // k
+  bool project = true;     // the tutorial's make_PSD (off with solver.projection = "none")
+  const std::vector<Spring>* springs = nullptr;
+  const std::vector<int>* slots = nullptr;
+};
+
+double mass_spring_energy(const MassSpring& m, const double* x);
+// Adds scale * gradient to g and scale * Hessian to the matrix values.
+void add_mass_spring_gradient(const MassSpring& m, const double* x, double scale, double* g);
+void add_mass_spring_derivatives(const MassSpring& m, const double* x, double scale, double* g,
+                                 double* hessian_values);
+
+}  // namespace invfree

@@ -1,0 +1,151 @@
+#!/usr/bin/python3
+"""Reference trajectories of the course scenes from the public solid-sim-tutorial.
+
+Runs each of the tutorial's chapters 1_mass_spring .. 5_mov_dirichlet as it is (its own
+simulator.py, settings unchanged) with pygame replaced by a stub, Newton's tolerance set to
+1e-6 instead of the scripts' 1e-2 (the only change, made by wrapping
+time_integrator.step_forward), and writes the body's node positions every 10 steps over
+200 steps to tests/data/course/<scene>.txt: one line per sample, "step x0 y0 x1 y1 ...".
+
+Usage: scripts/course_reference.py TUTORIAL [OUT_DIR]
+TUTORIAL is a checkout of github.com/liminchen/solid-sim-tutorial, or a bare git
+directory of it (the files are then read with `git show HEAD:...`). Needs numpy and scipy.
+Nothing of the tutorial is stored in this repository: only the numbers this script writes.
+"""
+import contextlib
+import io
+import os
+import subprocess
+import sys
+import tempfile
+import types
+
+CHAPTERS = [
+    ("1_mass_spring", "course-1-mass-spring"),
+    ("2_dirichlet", "course-2-dirichlet"),
+    ("3_contact", "course-3-contact"),
+    ("4_friction", "course-4-friction"),
+    ("5_mov_dirichlet", "course-5-moving-dirichlet"),
+]
+STEPS = 200
+EVERY = 10
+TOL = 1e-6
+
+
+class _Anything:
+    """Stands for every pygame object and function: calls and attributes return itself."""
+
+    def __call__(self, *args, **kwargs):
+        return self
+
+    def __getattr__(self, name):
+        return self
+
+    def __iter__(self):
+        return iter(())
+
+
+def _pygame_stub():
+    stub = types.ModuleType("pygame")
+    anything = _Anything()
+    stub.init = stub.quit = anything
+    stub.display = stub.draw = stub.time = anything
+    stub.event = types.SimpleNamespace(get=lambda: [])
+    stub.QUIT = object()
+    return stub
+
+
+def _chapter_files(tutorial, chapter, into):
+    if os.path.isdir(os.path.join(tutorial, chapter)):
+        src = os.path.join(tutorial, chapter)
+        for name in os.listdir(src):
+            if name.endswith(".py"):
+                with open(os.path.join(src, name)) as f, open(os.path.join(into, name), "w") as g:
+                    g.write(f.read())
+        return
+    names = subprocess.check_output(
+        ["git", "--git-dir", tutorial, "ls-tree", "--name-only", "HEAD", chapter + "/"], text=True
+    ).split()
+    for path in names:
+        if path.endswith(".py"):
+            text = subprocess.check_output(["git", "--git-dir", tutorial, "show", "HEAD:" + path])
+            with open(os.path.join(into, os.path.basename(path)), "wb") as g:
+                g.write(text)
+
+
+class _Done(Exception):
+    pass
+
+
+def run_chapter(tutorial, chapter, body_nodes_only=True):
+    samples = []
+    with tempfile.TemporaryDirectory() as work:
+        _chapter_files(tutorial, chapter, work)
+        old_path, old_cwd = list(sys.path), os.getcwd()
+        sys.path.insert(0, work)
+        os.chdir(work)
+        for name in ["square_mesh", "time_integrator", "utils", "InertiaEnergy", "MassSpringEnergy",
+                     "GravityEnergy", "BarrierEnergy", "FrictionEnergy", "SpringEnergy"]:
+            sys.modules.pop(name, None)
+        sys.modules["pygame"] = _pygame_stub()
+        try:
+            import time_integrator
+
+            original = time_integrator.step_forward
+            state = {"step": 0}
+
+            def record(x, n_body):
+                samples.append((state["step"], [float(c) for p in x[:n_body] for c in p]))
+
+            def step_forward(x, e, *args):
+                n_body = max(max(edge) for edge in e) + 1  # the ceiling node is not in e
+                if state["step"] == 0:
+                    record(x, n_body)
+                args = list(args)
+                args[-1] = TOL  # the last argument of every chapter's step_forward is tol
+                result = original(x, e, *args)
+                state["step"] += 1
+                if state["step"] % EVERY == 0:
+                    record(result[0], n_body)
+                if state["step"] == STEPS:
+                    raise _Done()
+                return result
+
+            time_integrator.step_forward = step_forward
+            with contextlib.redirect_stdout(io.StringIO()):
+                try:
+                    exec(compile(open("simulator.py").read(), "simulator.py", "exec"),
+                         {"__name__": "__main__"})
+                except _Done:
+                    pass
+        finally:
+            sys.path[:] = old_path
+            os.chdir(old_cwd)
+    return samples
+
+
+def main():
+    if len(sys.argv) < 2:
+        print(__doc__)
+        return 2
+    tutorial = os.path.abspath(sys.argv[1])
+    out_dir = sys.argv[2] if len(sys.argv) > 2 else os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data", "course")
+    os.makedirs(out_dir, exist_ok=True)
+    only = sys.argv[3:] if len(sys.argv) > 3 else None
+    for chapter, scene in CHAPTERS:
+        if only and scene not in only:
+            continue
+        samples = run_chapter(tutorial, chapter)
+        path = os.path.join(out_dir, scene + ".txt")
+        with open(path, "w") as f:
+            f.write("# %s of solid-sim-tutorial, tol %g, node positions (m) every %d steps; "
+                    "made by scripts/course_reference.py\n" % (chapter, TOL, EVERY))
+            for step, xs in samples:
+                f.write("%d %s\n" % (step, " ".join("%.12g" % v for v in xs)))
+        print("%s: %d samples of %d nodes -> %s" % (scene, len(samples), len(samples[0][1]) // 2, path))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
