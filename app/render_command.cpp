@@ -488,7 +488,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--steps-per-frame", opt.steps_per_frame,
                   "time steps between frames (default 1; with --mp4 or --gif and no --fps, the "
                   "lecture default: the steps that make real-time playback closest to 30 "
-                  "frames/s, e.g. 3 at h = 0.01 s: 33.3 frames/s)")
+                  "frames/s, e.g. 3 for compress, whose h is 1/100 of a second: 33.3 frames/s)")
       ->check(CLI::Range(1, kMaxStepsPerFrame));
   add_output_directory_option(cmd, opt.out,
                               "output directory (must be empty or new, see --force; locked while "
