@@ -44,7 +44,9 @@ void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r
   const double gap = min_plane_gap(sim);
   csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual << ","
       << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
-      << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << "," << r.wall_ms << "\n";
+      << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << ",";
+  const double self_gap = min_self_gap(sim);  // -1: no pair within dhat (or no self-contact)
+  csv << (std::isfinite(self_gap) ? self_gap : -1.0) << "," << r.wall_ms << "\n";
 }
 
 // The one-line summary on stdout: steps, time, mean Newton iterations and ms per step,
@@ -96,7 +98,8 @@ int run_simulate(const SimulateOptions& opt) {
   // CSV rows go to the temporary file in chunks, so memory stays flat however long the run.
   std::ostringstream csv;
   csv.precision(10);
-  csv << "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,wall_ms\n";
+  csv << "step,t,newton_iters,residual,energy,min_det_F,max_det_F,min_gap,ceiling_y,min_self_gap,"
+         "wall_ms\n";
   auto flush_csv = [&](bool force_flush) -> std::string {
     if (!csv_file.is_open() || (!force_flush && csv.tellp() < (1 << 16))) return "";
     const std::string chunk = csv.str();

@@ -82,7 +82,10 @@ bool needs_new_mesh(const SceneDef& old, const SceneDef& next);
 // Measurements of the current state.
 std::vector<double> triangle_det_f(const Simulation& sim);
 double min_plane_gap(const Simulation& sim);  // +inf without planes
-double total_energy(const Simulation& sim);   // kinetic + elastic + gravity (for stability checks)
+// Smallest distance from a boundary node to a boundary edge not incident to it (m), among
+// pairs closer than the scene's dhat; +inf without self-contact or when none is that close.
+double min_self_gap(const Simulation& sim);
+double total_energy(const Simulation& sim);  // kinetic + elastic + gravity (for stability checks)
 // The linear solver that runs: "ldlt", "cholmod" or "pcg+ldlt" ("" before the first
 // implicit step's setup).
 const char* linear_solver_backend(const Simulation& sim);

@@ -48,7 +48,8 @@ void build_assembly_plan(const Mesh& mesh, SparseHessian& h) {
 
 }  // namespace
 
-SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
+SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
+                                   std::span<const std::array<int, 2>> extra_pairs) {
   const int n_nodes = mesh.node_count();
   const int n_dof = 2 * n_nodes + (with_ceiling ? 1 : 0);
   std::vector<Eigen::Triplet<double>> entries;
@@ -58,6 +59,12 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
       for (int b = 0; b < 6; ++b)
         entries.emplace_back(2 * tri[a / 2] + a % 2, 2 * tri[b / 2] + b % 2, 0.0);
   for (int i = 0; i < n_dof; ++i) entries.emplace_back(i, i, 0.0);
+  for (const auto& [i, j] : extra_pairs)
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        entries.emplace_back(2 * i + a, 2 * j + b, 0.0);
+        entries.emplace_back(2 * j + b, 2 * i + a, 0.0);
+      }
   const int c = 2 * n_nodes;
   if (with_ceiling)
     for (int i = 0; i < n_nodes; ++i) {
@@ -88,8 +95,22 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling) {
     }
   }
   build_assembly_plan(mesh, h);
+  h.extra_pairs.assign(extra_pairs.begin(), extra_pairs.end());
   h.set_zero();
   return h;
+}
+
+bool has_node_block(const SparseHessian& h, int i, int j) {
+  const Eigen::SparseMatrix<double>& m = h.matrix;
+  const int* inner = m.innerIndexPtr();
+  const int begin = m.outerIndexPtr()[2 * j], end = m.outerIndexPtr()[2 * j + 1];
+  return std::binary_search(inner + begin, inner + end, 2 * i);
+}
+
+void add_node_block(SparseHessian& h, int i, int j, const Mat2& block) {
+  double* v = h.values();
+  for (int b = 0; b < 2; ++b)
+    for (int a = 0; a < 2; ++a) v[find_slot(h.matrix, 2 * i + a, 2 * j + b)] += block(a, b);
 }
 
 void SparseHessian::eliminate_ceiling() {

@@ -50,6 +50,7 @@ constexpr BoundedValue kBounded[] = {
     {"ceiling.stop", [](const SceneDef& s) { return s.ceiling_stop; }, kFinite},
     {"barrier.dhat", [](const SceneDef& s) { return s.dhat; }, kPositive},
     {"barrier.kappa", [](const SceneDef& s) { return s.kappa; }, kPositive},
+    {"self_contact.friction", [](const SceneDef& s) { return s.self_friction; }, kNonNegative},
 };
 
 }  // namespace

@@ -62,6 +62,10 @@ struct SceneDef {
   // [barrier]
   double dhat = 0.01;
   double kappa = 1e5;
+  // [self_contact]: IPC point-edge barrier between boundary nodes and edges of every body
+  // (potential/self_contact_barrier.h), CCD in the line search, the intersection invariant.
+  bool has_self_contact = false;
+  double self_friction = 0.0;  // point-edge friction coefficient (potential/self_friction.h)
 
   bool operator==(const SceneDef&) const = default;
   double contact_area() const { return side / n_seg; }

@@ -243,6 +243,8 @@ constexpr SectionSpec kSections[] = {
     {"ceiling", &SceneDef::has_ceiling,
      "a plane moving down until it stops, squashing the square; no section, no ceiling"},
     {"barrier", nullptr, "the IPC log barrier of both planes"},
+    {"self_contact", &SceneDef::has_self_contact,
+     "IPC contact of the boundary with itself (docs/method.md); no section, none"},
 };
 
 constexpr const char* kMassChoices[] = {"uniform", "lumped"};
@@ -310,6 +312,10 @@ const KeySpec kKeys[] = {
                                     "it stops once its start-of-step height is at or below this"),
     number<&SceneDef::dhat>("barrier", "dhat", "m", "distance below which the barrier acts"),
     number<&SceneDef::kappa>("barrier", "kappa", "Pa", "barrier stiffness"),
+    boolean<&SceneDef::has_self_contact>("self_contact", "enabled",
+                                         "false switches self-contact off"),
+    number<&SceneDef::self_friction>("self_contact", "friction", "",
+                                     "friction coefficient between boundary node and edge"),
 };
 
 }  // namespace
