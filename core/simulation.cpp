@@ -58,6 +58,7 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
   if (s.has_self_contact) {
     // No two boundary edges intersect (exact), hence every node-edge distance is > 0.
     StepWorkspace& ws = *sim.workspace;
+    const SelfContactTimer timer{ws.contact.ms};
     if (const auto hit =
             find_self_intersection(ws.boundary, x, ws.newton.contact_grid, ws.edge_pairs)) {
       const auto& a = ws.boundary.edges[hit->edge_a];
@@ -82,11 +83,14 @@ void fill_self_contact(Simulation& sim) {
   const SceneDef& s = sim.scene;
   StepWorkspace& ws = *sim.workspace;
   SelfContact& c = ws.problem.self_contact;
+  ws.contact.ms = 0.0;
   c.on = s.has_self_contact && s.integrator == Integrator::ImplicitEuler;
+  if (s.has_self_contact) boundary_of(sim);  // the invariant needs it with either integrator
   if (!c.on) return;
-  c.boundary = &boundary_of(sim);
+  c.boundary = &ws.boundary;
   c.rest = &sim.mesh.rest;
   c.params = {s.dhat, s.kappa};
+  c.ccd = s.self_contact_ccd;
   c.eps_u = kFrictionEpsV * s.h;
   c.cache = &ws.contact;
   self_contact_candidates_at(c, sim.x, ws.newton.contact_grid);
@@ -317,6 +321,7 @@ StepReport step(Simulation& sim) {
     sim.time += sim.scene.h;
     ++sim.step_count;
   }
+  if (sim.scene.has_self_contact) report.self_contact_ms = ws.contact.ms;
   report.wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return report;

@@ -35,6 +35,9 @@ struct StepReport {
   double factor_ms = 0.0;
   double solve_ms = 0.0;
   double line_search_ms = 0.0;
+  // Of the above and the rest: self-contact's broad phase, CCD, energy and derivatives, and
+  // its intersection check (0 without self-contact).
+  double self_contact_ms = 0.0;
   int factorizations = 0;
   int pcg_iterations = 0;
   int energy_evaluations = 0;

@@ -14,6 +14,7 @@
 // Outputs: value, gradient and the 6x6 Hessian blocks (mesh node triples).
 #pragma once
 
+#include <chrono>
 #include <vector>
 
 #include "potential/self_contact_barrier.h"
@@ -26,6 +27,17 @@ struct SelfContactCache {
   std::vector<PointEdgePair> pairs;        // the current candidates
   std::vector<SelfFrictionPair> friction;  // lagged at x^n
   std::vector<PointEdgeHessian> hessians;  // of the last gradient/Hessian evaluation
+  double ms = 0.0;  // steady-clock time spent in the term, its broad phase and CCD (a step)
+};
+
+// Adds the steady-clock time of its scope to `ms` (SelfContactCache::ms).
+struct SelfContactTimer {
+  double& ms;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  ~SelfContactTimer() {
+    ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
 };
 
 struct SelfContact {
@@ -33,6 +45,7 @@ struct SelfContact {
   const Boundary* boundary = nullptr;
   const std::vector<Vec2>* rest = nullptr;
   SelfContactParams params;
+  bool ccd = true;      // the line search's CCD filter (solver/self_contact_filter.h)
   double eps_u = 1e-5;  // friction's eps_v h
   SelfContactCache* cache = nullptr;
 };

@@ -316,6 +316,9 @@ const KeySpec kKeys[] = {
                                          "false switches self-contact off"),
     number<&SceneDef::self_friction>("self_contact", "friction", "",
                                      "friction coefficient between boundary node and edge"),
+    boolean<&SceneDef::self_contact_ccd>(
+        "self_contact", "ccd",
+        "the line search's CCD filter (false only to show what goes wrong without it)"),
 };
 
 }  // namespace

@@ -13,7 +13,8 @@ namespace invfree {
 // Candidates around the point z (no motion): the start of a step.
 void self_contact_candidates_at(const SelfContact& c, const VecX& z, BroadPhaseGrid& grid);
 // Candidates over z -> z + alpha_max dir, then the largest alpha in [0, alpha_max] that
-// moves no boundary node through a boundary edge (additive CCD).
+// moves no boundary node through a boundary edge (additive CCD; alpha_max when the term's
+// ccd is off).
 double self_contact_filter(const SelfContact& c, const VecX& z, const VecX& dir, double alpha_max,
                            BroadPhaseGrid& grid);
 // The largest fraction of the straight motion z -> trial that is collision-free, over the

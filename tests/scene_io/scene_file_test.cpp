@@ -244,6 +244,9 @@ const std::map<std::string, Kind>& key_kinds() {
       {"ceiling.stop", Kind::Number},
       {"barrier.dhat", Kind::Number},
       {"barrier.kappa", Kind::Number},
+      {"self_contact.enabled", Kind::Bool},
+      {"self_contact.friction", Kind::Number},
+      {"self_contact.ccd", Kind::Bool},
   };
   return kinds;
 }
