@@ -38,8 +38,11 @@ void expect_same_run(SceneDef scene, int steps) {
 }
 
 TEST(SelfContactStep, BodyMovingRigidlyFeelsNothing) {
-  // n_seg 128: an edge is 7.8 mm, neighbours along the boundary are within the scene's dhat.
-  expect_same_run(free_body(128, false), 5);
+  // dhat 5 cm on 3.1 cm edges: neighbours along the boundary are within the scene's dhat
+  // (as at n_seg 256 with the default 1 cm), so only the per-pair dhat rule keeps them out.
+  SceneDef s = free_body(32, false);
+  s.dhat = 0.05;
+  expect_same_run(s, 5);
 }
 
 TEST(SelfContactStep, BodyFallingFreelyFeelsNothing) {
