@@ -54,6 +54,7 @@ struct BenchRow {
   int newton_worst = 0, newton_worst_step = 0;
   double assembly = 0, factor = 0, solve = 0, line_search = 0, other = 0;
   double pcg = 0, factorizations = 0;
+  double self_contact = 0;  // of the split above (mean ms per step)
   std::string solver;
 };
 
@@ -125,6 +126,7 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     row.factor += r.factor_ms;
     row.solve += r.solve_ms;
     row.line_search += r.line_search_ms;
+    row.self_contact += r.self_contact_ms;
   }
   row.steps = steps;
   if (steps > 0) {
@@ -145,6 +147,7 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     row.factor *= inv;
     row.solve *= inv;
     row.line_search *= inv;
+    row.self_contact *= inv;
     row.other =
         std::max(0.0, row.mean_ms - row.assembly - row.factor - row.solve - row.line_search);
   }
@@ -155,7 +158,7 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
   o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,newton_worst,"
        "newton_worst_step,assembly_ms,factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,"
-       "factorizations_per_step,solver\n";
+       "factorizations_per_step,solver,self_contact_ms\n";
   for (const auto& r : rows)
     o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
       << format_number(r.mean_ms, "%.6g") << "," << format_number(r.median_ms, "%.6g") << ","
@@ -163,7 +166,8 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
       << "," << format_number(r.assembly, "%.6g") << "," << format_number(r.factor, "%.6g") << ","
       << format_number(r.solve, "%.6g") << "," << format_number(r.line_search, "%.6g") << ","
       << format_number(r.other, "%.6g") << "," << format_number(r.pcg, "%.5g") << ","
-      << format_number(r.factorizations, "%.5g") << "," << r.solver << "\n";
+      << format_number(r.factorizations, "%.5g") << "," << r.solver << ","
+      << format_number(r.self_contact, "%.6g") << "\n";
   return o.str();
 }
 
@@ -269,19 +273,20 @@ int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_m
 // The stdout table: its header, then one line per size (with the speed-up over the
 // reference demo where it applies).
 void print_header() {
-  std::printf("%-6s %8s %10s %6s %10s %10s %7s %6s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
+  std::printf("%-6s %8s %10s %6s %10s %10s %7s %6s %9s %9s %9s %9s %9s %6s  %s\n", "n_seg", "dofs",
               "triangles", "steps", "median_ms", "mean_ms", "newton", "worst", "assembly", "factor",
-              "solve", "search", "pcg", "solver");
+              "solve", "search", "contact", "pcg", "solver");
 }
 void print_row(const BenchRow& row, bool reference) {
   std::string speedup;
   for (int k = 0; k < 3; ++k)
     if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
       speedup = "  " + format_number(kReferenceMs[k] / row.median_ms, "%.4g") + "x the reference";
-  std::printf("%-6d %8d %10d %6d %10.4f %10.4f %7.2f %6d %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n",
-              row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton,
-              row.newton_worst, row.assembly, row.factor, row.solve, row.line_search, row.pcg,
-              row.solver.c_str(), speedup.c_str());
+  std::printf(
+      "%-6d %8d %10d %6d %10.4f %10.4f %7.2f %6d %9.4f %9.4f %9.4f %9.4f %9.4f %6.2f  %s%s\n",
+      row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton,
+      row.newton_worst, row.assembly, row.factor, row.solve, row.line_search, row.self_contact,
+      row.pcg, row.solver.c_str(), speedup.c_str());
   flush_standard_output();
 }
 

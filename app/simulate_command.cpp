@@ -47,8 +47,9 @@ void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r
       << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
       << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << ",";
   const EnergyReport e = energy_report(sim);
-  csv << e.kinetic << "," << e.elastic << "," << e.gravitational << "," << e.contact << ","
-      << r.wall_ms << "\n";
+  csv << e.kinetic << "," << e.elastic << "," << e.gravitational << "," << e.contact << ",";
+  const double self_gap = min_self_gap(sim);  // -1: no pair within dhat (or no self-contact)
+  csv << (std::isfinite(self_gap) ? self_gap : -1.0) << "," << r.wall_ms << "\n";
 }
 
 // The one-line summary on stdout: steps, time, mean Newton iterations and ms per step,
@@ -101,7 +102,7 @@ int run_simulate(const SimulateOptions& opt) {
   std::ostringstream csv;
   csv.precision(10);
   csv << "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,"
-         "kinetic,elastic,gravitational,contact,wall_ms\n";
+         "kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n";
   auto flush_csv = [&](bool force_flush) -> std::string {
     if (!csv_file.is_open() || (!force_flush && csv.tellp() < (1 << 16))) return "";
     const std::string chunk = csv.str();
@@ -167,7 +168,7 @@ void register_simulate_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--csv", opt.csv_path,
                   "write one row per step: step,t,newton_iters,residual,incremental_potential,"
                   "min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,"
-                  "wall_ms (energies in J; docs/outputs.md)")
+                  "min_self_gap,wall_ms (energies in J; docs/outputs.md)")
       ->type_name("FILE")
       ->check(non_empty_path());
   cmd->add_flag("--force", opt.force,

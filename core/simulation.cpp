@@ -7,7 +7,9 @@
 #include <type_traits>
 
 #include "scene/fixed_nodes.h"
+#include "collision/intersection_check.h"
 #include "scene/initial_state.h"
+#include "solver/self_contact_filter.h"
 #include "solver/step_workspace.h"
 
 namespace invfree {
@@ -55,7 +57,47 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
       }
     }
   }
+  if (s.has_self_contact) {
+    // No two boundary edges intersect (exact), hence every node-edge distance is > 0.
+    StepWorkspace& ws = *sim.workspace;
+    const SelfContactTimer timer{ws.contact.ms};
+    if (const auto hit =
+            find_self_intersection(ws.boundary, x, ws.newton.contact_grid, ws.edge_pairs)) {
+      const auto& a = ws.boundary.edges[hit->edge_a];
+      const auto& b = ws.boundary.edges[hit->edge_b];
+      *message = "boundary edges " + std::to_string(a[0]) + "-" + std::to_string(a[1]) + " and " +
+                 std::to_string(b[0]) + "-" + std::to_string(b[1]) + " intersect";
+      return StepStatus::Intersected;
+    }
+  }
   return StepStatus::Ok;
+}
+
+// The boundary of every body, found once per mesh (the first step that needs it).
+const Boundary& boundary_of(Simulation& sim) {
+  StepWorkspace& ws = *sim.workspace;
+  if (ws.boundary.edges.empty()) ws.boundary = find_boundary(sim.mesh);
+  return ws.boundary;
+}
+
+// Self-contact (implicit Euler only): candidates at x^n and friction lagged there.
+void fill_self_contact(Simulation& sim) {
+  const SceneDef& s = sim.scene;
+  StepWorkspace& ws = *sim.workspace;
+  SelfContact& c = ws.problem.self_contact;
+  ws.contact.ms = 0.0;
+  c.on = s.has_self_contact && s.integrator == Integrator::ImplicitEuler;
+  if (s.has_self_contact) boundary_of(sim);  // the invariant needs it with either integrator
+  if (!c.on) return;
+  c.boundary = &ws.boundary;
+  c.rest = &sim.mesh.rest;
+  c.params = {s.dhat, s.kappa};
+  c.ccd = s.self_contact_ccd;
+  c.eps_u = kFrictionEpsV * s.h;
+  c.cache = &ws.contact;
+  self_contact_candidates_at(c, sim.x, ws.newton.contact_grid);
+  lag_self_friction(*c.boundary, *c.rest, ws.contact.pairs, sim.x, c.params, s.self_friction,
+                    ws.contact.friction);
 }
 
 // The step's problem: each term the scene switches on, with its data frozen for the step.
@@ -103,6 +145,7 @@ void fill_problem(Simulation& sim) {
   p.pull = sim.pull;
   p.pull.on = sim.pull.on && sim.pull.node >= 0 && sim.pull.node < n &&
               sim.pull.target.allFinite() && sim.pull.stiffness > 0.0;
+  fill_self_contact(sim);
 }
 
 // The linear solver follows the scene's [solver] settings; its symbolic analysis is redone
@@ -111,8 +154,10 @@ void prepare_solver(Simulation& sim) {
   const bool positive_definite = sim.scene.projection != HessianProjection::None;
   NewtonWorkspace& ws = sim.workspace->newton;
   if (!ws.solver.ready() || ws.solver.requested() != sim.scene.linear_solver ||
-      ws.solver.positive_definite() != positive_definite)
+      ws.solver.positive_definite() != positive_definite) {
     ws.solver.setup(ws.hessian.matrix, sim.scene.linear_solver, positive_definite);
+    ws.analyzed_pattern = ws.hessian.pattern_version;
+  }
 }
 
 StepReport report_of(const NewtonResult& r, int max_iterations) {
@@ -308,6 +353,7 @@ StepReport step(Simulation& sim) {
     sim.time += sim.scene.h;
     ++sim.step_count;
   }
+  if (sim.scene.has_self_contact) report.self_contact_ms = ws.contact.ms;
   report.wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return report;
@@ -328,6 +374,18 @@ double min_plane_gap(const Simulation& sim) {
     if (sim.scene.has_ceiling) gap = std::min(gap, sim.ceiling_y - y);
   }
   return gap;
+}
+
+double min_self_gap(const Simulation& sim) {
+  if (!sim.scene.has_self_contact || !sim.workspace) return INFINITY;
+  StepWorkspace& ws = *sim.workspace;
+  const Boundary& boundary =
+      ws.boundary.edges.empty() ? find_boundary(sim.mesh) : ws.boundary;  // before any step
+  std::vector<PointEdgePair> pairs;
+  BroadPhaseGrid grid;
+  point_edge_candidates(boundary, sim.x, sim.scene.dhat, grid, pairs);
+  const double gap = min_self_gap(boundary, pairs, sim.x);
+  return gap < sim.scene.dhat ? gap : INFINITY;
 }
 
 double total_energy(const Simulation& sim) {

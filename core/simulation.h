@@ -35,6 +35,9 @@ struct StepReport {
   double factor_ms = 0.0;
   double solve_ms = 0.0;
   double line_search_ms = 0.0;
+  // Of the above and the rest: self-contact's broad phase, CCD, energy and derivatives, and
+  // its intersection check (0 without self-contact).
+  double self_contact_ms = 0.0;
   int factorizations = 0;
   int pcg_iterations = 0;
   int energy_evaluations = 0;
@@ -82,7 +85,10 @@ bool needs_new_mesh(const SceneDef& old, const SceneDef& next);
 // Measurements of the current state.
 std::vector<double> triangle_det_f(const Simulation& sim);
 double min_plane_gap(const Simulation& sim);  // +inf without planes
-double total_energy(const Simulation& sim);   // kinetic + elastic + gravity (for stability checks)
+// Smallest distance from a boundary node to a boundary edge not incident to it (m), among
+// pairs closer than the scene's dhat; +inf without self-contact or when none is that close.
+double min_self_gap(const Simulation& sim);
+double total_energy(const Simulation& sim);  // kinetic + elastic + gravity (for stability checks)
 // The linear solver that runs: "ldlt", "cholmod" or "pcg+ldlt" ("" before the first
 // implicit step's setup).
 const char* linear_solver_backend(const Simulation& sim);

@@ -24,6 +24,8 @@ const char* verdict_name(Verdict v) {
       return "blew-up";
     case Verdict::NotApplicable:
       return "n/a";
+    case Verdict::Intersected:
+      return "intersected";
   }
   return "?";
 }
@@ -41,6 +43,8 @@ Verdict verdict_from_status(StepStatus s) {
       return Verdict::Inverted;
     case StepStatus::Penetrated:
       return Verdict::Penetrated;
+    case StepStatus::Intersected:
+      return Verdict::Intersected;
   }
   return Verdict::NonFinite;
 }

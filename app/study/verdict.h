@@ -20,7 +20,16 @@
 
 namespace invfree {
 
-enum class Verdict { Ok, Inverted, Penetrated, NonFinite, NewtonFailed, BlewUp, NotApplicable };
+enum class Verdict {
+  Ok,
+  Inverted,
+  Penetrated,
+  NonFinite,
+  NewtonFailed,
+  BlewUp,
+  NotApplicable,
+  Intersected
+};
 
 const char* verdict_name(Verdict v);  // "ok", "inverted", ..., "n/a"
 Verdict verdict_from_status(StepStatus s);

@@ -106,8 +106,22 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
     }
   }
   build_assembly_plan(mesh, h);
+  h.extra_pairs.assign(extra_pairs.begin(), extra_pairs.end());
   h.set_zero();
   return h;
+}
+
+bool has_node_block(const SparseHessian& h, int i, int j) {
+  const Eigen::SparseMatrix<double>& m = h.matrix;
+  const int* inner = m.innerIndexPtr();
+  const int begin = m.outerIndexPtr()[2 * j], end = m.outerIndexPtr()[2 * j + 1];
+  return std::binary_search(inner + begin, inner + end, 2 * i);
+}
+
+void add_node_block(SparseHessian& h, int i, int j, const Mat2& block) {
+  double* v = h.values();
+  for (int b = 0; b < 2; ++b)
+    for (int a = 0; a < 2; ++a) v[find_slot(h.matrix, 2 * i + a, 2 * j + b)] += block(a, b);
 }
 
 void SparseHessian::eliminate_ceiling() {

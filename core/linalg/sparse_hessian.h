@@ -32,6 +32,12 @@ struct SparseHessian {
   std::vector<int> colour_begin;
   std::vector<int> chunk_order;
   int colour_count() const { return static_cast<int>(colour_begin.size()) - 1; }
+  // Node pairs (i < j, sorted) coupled beyond the mesh's triangles: contact blocks that come
+  // and go (potential/self_contact.h). The pattern holds both (i, j) and (j, i) 2x2 blocks.
+  // pattern_version changes whenever the pattern is rebuilt, so the linear solver knows
+  // to redo its symbolic analysis.
+  std::vector<std::array<int, 2>> extra_pairs;
+  int pattern_version = 0;
 
   void set_zero() { std::fill_n(matrix.valuePtr(), matrix.nonZeros(), 0.0); }
   double* values() { return matrix.valuePtr(); }
@@ -46,5 +52,10 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
 // The position of entry (row, col) in the matrix's value array; throws when the pattern
 // has no such entry.
 int sparse_slot(const Eigen::SparseMatrix<double>& m, int row, int col);
+
+// True when the 2x2 block of nodes (i, j) is in the pattern (both triangles).
+bool has_node_block(const SparseHessian& h, int i, int j);
+// Adds a 2x2 block at nodes (i, j); the pattern must hold it.
+void add_node_block(SparseHessian& h, int i, int j, const Mat2& block);
 
 }  // namespace invfree

@@ -68,6 +68,43 @@ void add_node_terms(const StepProblem& p, const double* z, int begin, int end, d
   }
 }
 
+// True when every node pair of every contact block is in the Hessian's pattern.
+bool contact_blocks_fit(const std::vector<PointEdgeHessian>& blocks, const SparseHessian& hess) {
+  for (const PointEdgeHessian& b : blocks)
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j)
+        if (!has_node_block(hess, b.nodes[i], b.nodes[j])) return false;
+  return true;
+}
+
+// The pattern of the mesh plus the node pairs of the current contact blocks and those the
+// pattern held already (contacts that come and go between iterations do not rebuild it each
+// time), unless those outnumber the current ones by far (a fold that rolled on).
+void rebuild_pattern(const StepProblem& p, SparseHessian& hess) {
+  std::vector<std::array<int, 2>> pairs;
+  for (const PointEdgeHessian& b : p.self_contact.cache->hessians)
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j) {
+        const int u = b.nodes[i], v = b.nodes[j];
+        if (u != v) pairs.push_back({std::min(u, v), std::max(u, v)});
+      }
+  const size_t current = pairs.size();
+  if (hess.extra_pairs.size() <= 4 * current + 64)
+    pairs.insert(pairs.end(), hess.extra_pairs.begin(), hess.extra_pairs.end());
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  const int version = hess.pattern_version;
+  hess = build_sparse_hessian(*p.mesh, p.ceiling.on, pairs);
+  hess.pattern_version = version + 1;
+}
+
+void scatter_contact_blocks(const std::vector<PointEdgeHessian>& blocks, SparseHessian& hess) {
+  for (const PointEdgeHessian& b : blocks)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        add_node_block(hess, b.nodes[i], b.nodes[j], b.hessian.block<2, 2>(2 * i, 2 * j));
+}
+
 }  // namespace
 
 double ip_energy(const StepProblem& p, const VecX& z) {
@@ -103,6 +140,7 @@ double ip_energy(const StepProblem& p, const VecX& z) {
   if (p.ceiling.on) e += p.ceiling_penalty.value(z[2 * n]);
   if (p.pull.on) e += p.pull.value(z.segment<2>(2 * p.pull.node), h2);
   if (p.springs.on) e += h2 * mass_spring_energy(p.springs, zp);
+  if (p.self_contact.on) e += h2 * self_contact_value(p.self_contact, z, p.x_start);
   return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
 }
 
@@ -152,6 +190,18 @@ void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient, Sp
     const int ix = 2 * p.pull.node, iy = ix + 1;
     p.pull.add_derivatives(z.segment<2>(ix), h2, g[ix], g[iy], values[hess.diagonal_slots[ix]],
                            values[hess.diagonal_slots[iy]]);
+  }
+
+  if (p.self_contact.on) {
+    self_contact_derivatives(p.self_contact, z, p.x_start, h2, gradient);
+    if (!contact_blocks_fit(p.self_contact.cache->hessians, hess)) {
+      // A contact outside the pattern: rebuild it and assemble again (the values so far
+      // live in the old matrix).
+      rebuild_pattern(p, hess);
+      ip_gradient_hessian(p, z, gradient, hess);
+      return;
+    }
+    scatter_contact_blocks(p.self_contact.cache->hessians, hess);
   }
 
   if (p.ceiling.on) {

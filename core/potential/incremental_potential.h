@@ -7,6 +7,7 @@
 //                   + k_pull/2 |x_p - target|^2                     pull_spring.h
 //                   + sum_s 1/2 k l^2 (|d_s|^2/l^2 - 1)^2 ]         mass_spring.h
 //           + 1/2 k (c - c_target)^2                                ceiling_penalty.h
+//           + h^2 [ sum_pairs B(D(node, edge)) + lagged friction ]  self_contact.h
 // over the node coordinates x (2N) and, when the scene has a ceiling, its height c as one
 // extra unknown. Each term is one file of free functions and is evaluated only when the
 // scene switches it on; the terms are listed once, in for_each_node_term below and in the
@@ -31,6 +32,7 @@
 #include "potential/mass_spring.h"
 #include "potential/plane_barrier.h"
 #include "potential/pull_spring.h"
+#include "potential/self_contact.h"
 #include "scene/mesh.h"
 
 namespace invfree {
@@ -51,6 +53,7 @@ struct StepProblem {
   PullSpring pull;
   MassSpring springs;
   FixedDofs fixed;
+  SelfContact self_contact;  // on: its candidates come from the line search's filter
 
   int node_count() const { return mesh->node_count(); }
   int dof_count() const { return 2 * node_count() + (ceiling.on ? 1 : 0); }
@@ -75,10 +78,14 @@ void for_each_node_term(const StepProblem& p, Fn&& fn) {
 }
 
 double ip_energy(const StepProblem& p, const VecX& z);
+// With self-contact on, a contact block outside the Hessian's pattern rebuilds the pattern
+// (hessian.pattern_version changes; the caller redoes the symbolic analysis).
 void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient,
                          SparseHessian& hessian);
 // The largest alpha in (0, 1] that every filter allows along direction dir: the planes'
-// (plane_barrier.h) and, when the model needs det F > 0, the inversion filter's.
+// (plane_barrier.h) and, when the model needs det F > 0, the inversion filter's. The
+// self-contact CCD, which runs the broad phase, is applied on top by Newton
+// (solver/self_contact_filter.h).
 double largest_feasible_step(const StepProblem& p, const VecX& z, const VecX& dir);
 
 }  // namespace invfree

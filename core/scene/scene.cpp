@@ -51,6 +51,7 @@ constexpr BoundedValue kBounded[] = {
     {"barrier.dhat", [](const SceneDef& s) { return s.dhat; }, kPositive},
     {"barrier.kappa", [](const SceneDef& s) { return s.kappa; }, kPositive},
     {"mass_spring.stiffness", [](const SceneDef& s) { return s.spring_stiffness; }, kPositive},
+    {"self_contact.friction", [](const SceneDef& s) { return s.self_friction; }, kNonNegative},
 };
 
 constexpr struct {
@@ -170,6 +171,16 @@ std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
     if (s.ceiling_stop <= s.ground_y)
       return SceneProblem{"ceiling.stop", "must be above ground.y", planes};
   }
+  // Self-contact rebuilds the Hessian's pattern when a contact needs new blocks; the
+  // springs' and the fixed nodes' precomputed slots into it would then be stale.
+  if (s.has_self_contact && s.has_mass_spring)
+    return SceneProblem{"self_contact.enabled",
+                        "is not available with [mass_spring] (springs need a fixed Hessian pattern)",
+                        {"mass_spring.enabled"}};
+  if (s.has_self_contact && s.has_fixed)
+    return SceneProblem{"self_contact.enabled",
+                        "is not available with [fixed] (fixed nodes need a fixed Hessian pattern)",
+                        {"fixed.enabled"}};
   return check_initial_state(s);
 }
 

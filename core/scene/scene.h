@@ -95,6 +95,11 @@ struct SceneDef {
   Vec2 ground_normal = Vec2(0.0, 1.0);
   // [initial] stretch: rest positions scaled by (sx, sy) about the origin at t = 0.
   Vec2 initial_stretch = Vec2(1.0, 1.0);
+  // [self_contact]: IPC point-edge barrier between boundary nodes and edges of every body
+  // (potential/self_contact_barrier.h), CCD in the line search, the intersection invariant.
+  bool has_self_contact = false;
+  double self_friction = 0.0;    // point-edge friction coefficient (potential/self_friction.h)
+  bool self_contact_ccd = true;  // false: the line search's CCD filter is off (a study row)
 
   bool operator==(const SceneDef&) const = default;
   double contact_area() const { return side / n_seg; }

@@ -248,6 +248,8 @@ constexpr SectionSpec kSections[] = {
      "material's triangles (the course's chapters 1-5); no section, no springs"},
     {"fixed", &SceneDef::has_fixed,
      "nodes held at their initial positions, chosen in rest space; no section, none"},
+    {"self_contact", &SceneDef::has_self_contact,
+     "IPC contact of the boundary with itself (docs/method.md); no section, none"},
 };
 
 constexpr const char* kMassChoices[] = {"uniform", "lumped"};
@@ -336,6 +338,13 @@ const KeySpec kKeys[] = {
                                      "nodes whose rest position is in [box_min, box_max] are "
                                      "held fixed (min > max: no box)"),
     vector<&SceneDef::fixed_box_max>("fixed", "box_max", "m", "the box's upper corner"),
+    boolean<&SceneDef::has_self_contact>("self_contact", "enabled",
+                                         "false switches self-contact off"),
+    number<&SceneDef::self_friction>("self_contact", "friction", "",
+                                     "friction coefficient between boundary node and edge"),
+    boolean<&SceneDef::self_contact_ccd>(
+        "self_contact", "ccd",
+        "the line search's CCD filter (false only to show what goes wrong without it)"),
 };
 
 }  // namespace

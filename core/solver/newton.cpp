@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "solver/self_contact_filter.h"
+
 namespace invfree {
 
 namespace {
@@ -31,13 +33,22 @@ struct Newton {
     return e;
   }
 
+  // largest_feasible_step and, with self-contact, the CCD (which rebuilds the candidates
+  // for the segment z -> z + alpha dir).
+  double feasible_step(const VecX& z, const VecX& dir) {
+    double alpha = largest_feasible_step(p, z, dir);
+    if (p.self_contact.on && alpha > 0.0)
+      alpha = self_contact_filter(p.self_contact, z, dir, alpha, ws.contact_grid);
+    return alpha;
+  }
+
   // z moved toward x^n + h v^n as far as the filters allow (the ceiling stays).
   void warm_start(VecX& z) {
     const auto t = Clock::now();
     const int n = p.node_count();
     ws.direction.head(2 * n) = p.x_tilde - z.head(2 * n);
     if (p.ceiling.on) ws.direction[2 * n] = 0.0;
-    const double alpha = largest_feasible_step(p, z, ws.direction);
+    const double alpha = feasible_step(z, ws.direction);
     if (alpha > 0.0) z.head(2 * n) += alpha * ws.direction.head(2 * n);
     result.line_search_ms += ms_since(t);
   }
@@ -64,6 +75,10 @@ struct Newton {
     ip_gradient_hessian(p, z, ws.gradient, ws.hessian);
     ws.rhs = -ws.gradient;
     result.assembly_ms += ms_since(t);
+    if (ws.hessian.pattern_version != ws.analyzed_pattern) {  // contact blocks changed it
+      ws.solver.setup(ws.hessian.matrix, ws.solver.requested(), ws.solver.positive_definite());
+      ws.analyzed_pattern = ws.hessian.pattern_version;
+    }
     SolveRequest request;
     request.threshold = settings.tol * p.h;
     if (p.elasticity.projection != HessianProjection::None) {
@@ -93,6 +108,11 @@ struct Newton {
     while (true) {
       ws.trial = z + alpha * ws.direction;
       if (stop_crossings) stopped = stop_friction_crossings(p, z, ws.trial, ws.crossings);
+      if (stopped > 0 && p.self_contact.on &&
+          self_contact_path_step(p.self_contact, z, ws.trial, ws.contact_scratch) < 1.0) {
+        ws.trial = z + alpha * ws.direction;  // the stops would cross an edge: the straight trial
+        stopped = 0;
+      }
       trial_energy = energy(ws.trial);
       if (trial_energy <= current || halvings == settings.max_halvings) break;
       alpha *= 0.5;
@@ -112,8 +132,16 @@ struct Newton {
     if (!(model_decrease > 0.0 && current - trial_energy > 1.5 * model_decrease))
       return trial_energy;
     double step = 1.0;
+    // With self-contact, one filter call for the longest expansion (see newton.h).
+    double contact_limit = 0.0;
+    if (p.self_contact.on) {
+      const double longest = double(1 << kMaxExpansions);
+      ws.trial2 = longest * ws.direction;
+      contact_limit = longest * feasible_step(z, ws.trial2);
+    }
     for (int k = 0; k < kMaxExpansions; ++k) {
       const double next = 2.0 * step;
+      if (p.self_contact.on && next > contact_limit) break;
       ws.trial2 = next * ws.direction;
       if (largest_feasible_step(p, z, ws.trial2) < 1.0) break;
       ws.trial2 += z;
@@ -139,6 +167,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     if (v->size() != dofs) v->resize(dofs);
 
   if (settings.predictor) newton.warm_start(z);
+  if (problem.self_contact.on) self_contact_candidates_at(problem.self_contact, z, ws.contact_grid);
   double energy = newton.energy(z);
   for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations) {
     if (newton.fix_ceiling_when_safe(z)) energy = newton.energy(z);
@@ -162,7 +191,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSe
     }
 
     const auto t = Clock::now();
-    const double alpha = largest_feasible_step(problem, z, ws.direction);
+    const double alpha = newton.feasible_step(z, ws.direction);
     result.line_search_ms += ms_since(t);
     // Near convergence the decrease a step can bring, -alpha g.p, falls below the rounding
     // noise of E itself (~1e-16 |E|): comparing energies is meaningless there and

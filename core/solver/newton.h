@@ -28,6 +28,13 @@
 // `invfree study` / `invfree stability` with the method `plain-line-search` (both off);
 // see docs/study.md.
 //
+// Self-contact (problem.self_contact.on, potential/self_contact.h): every filter call also
+// runs the broad phase over the segment it checks and the additive CCD over its pairs, and
+// that candidate list serves every energy until the next filter call; a trial that a
+// friction-crossing stop moved off the line is CCD-checked along its own path and, if that
+// path is not collision-free, replaced by the straight trial; step expansion checks the
+// longest expansion once (its candidates cover every shorter one).
+//
 // The linear solve may be inexact (PCG, see linalg/linear_solver.h); it is run until the
 // stopping decision is the one the exact direction would give, and each of its directions
 // is a descent direction, so the test and the invariants are exactly those of a direct solve.
@@ -35,6 +42,7 @@
 // minimum (or the last iterate on failure) and a report; never loops forever.
 #pragma once
 
+#include "collision/broad_phase.h"
 #include "linalg/linear_solver.h"
 #include "potential/incremental_potential.h"
 #include "solver/friction_crossing.h"
@@ -76,6 +84,12 @@ struct NewtonWorkspace {
   VecX gradient, rhs, direction, trial, trial2;
   double min_node_mass = 0.0;  // for the PCG error bound (linear_solver.h)
   FrictionCrossingScratch crossings;
+  // Self-contact (problem.self_contact.on): the broad phase's grid, the pattern version the
+  // solver's symbolic analysis is for (redone when the contact blocks change the pattern),
+  // and a scratch vector.
+  BroadPhaseGrid contact_grid;
+  int analyzed_pattern = 0;
+  VecX contact_scratch;
 };
 
 NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSettings& settings,

@@ -10,6 +10,7 @@ enum class StepStatus {
   NonFinite,          // positions or velocities became NaN/inf
   Inverted,           // a triangle reached det F <= 0 under a model that forbids it
   Penetrated,         // a node reached or crossed the ground or the ceiling
+  Intersected,        // two boundary edges intersect (self-contact on)
 };
 
 inline const char* step_status_name(StepStatus s) {
@@ -26,6 +27,8 @@ inline const char* step_status_name(StepStatus s) {
       return "inverted";
     case StepStatus::Penetrated:
       return "penetrated";
+    case StepStatus::Intersected:
+      return "intersected";
   }
   return "?";
 }

@@ -5,7 +5,10 @@
 // that look inside a step do.
 #pragma once
 
+#include <vector>
+
 #include "potential/incremental_potential.h"
+#include "scene/boundary.h"
 #include "solver/newton.h"
 
 namespace invfree {
@@ -16,6 +19,10 @@ struct StepWorkspace {
   VecX z, x_new, v_new;
   std::vector<Spring> springs;    // a mass-spring scene's (problem.springs points here)
   std::vector<int> spring_slots;  // 16 per spring
+  // Self-contact: the bodies' boundary (built on first use) and the term's candidates.
+  Boundary boundary;
+  SelfContactCache contact;
+  std::vector<std::array<int, 2>> edge_pairs;  // scratch of the intersection check
 };
 
 }  // namespace invfree

@@ -35,7 +35,7 @@ TEST(Cli, SimulateWritesCsvAndObj) {
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line,
-            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,wall_ms");
+            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, 5);
@@ -235,7 +235,7 @@ TEST(Cli, StepFailureNamesTheStepAndKeepsCompleteOutput) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/obj/0.obj"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/obj/1.obj"));
   EXPECT_EQ(slurp(dir + "/run.csv"),
-            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,wall_ms\n");
+            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n");
   std::filesystem::remove_all(dir);
 }
 

@@ -258,6 +258,9 @@ const std::map<std::string, Kind>& key_kinds() {
       {"fixed.corners", Kind::Enum},
       {"fixed.box_min", Kind::Vec2},
       {"fixed.box_max", Kind::Vec2},
+      {"self_contact.enabled", Kind::Bool},
+      {"self_contact.friction", Kind::Number},
+      {"self_contact.ccd", Kind::Bool},
   };
   return kinds;
 }
