@@ -143,8 +143,8 @@ std::unique_ptr<Canvas> contact_sheet(const StabilityResult& r, ChartFormat form
       "coloured by det F",
       20, 36, 24, kInk);
   img.text(std::string(r.quick ? "A quick run: each scene until the ceiling stops. " : "") +
-               "rows: methods; columns: stress scenes (assets/scenes/stress-*.toml); symplectic "
-               "Euler takes 20 steps per scene step",
+               "rows: methods; columns: stress scenes (assets/scenes/stress-*.toml, then the "
+               "course's squash); symplectic Euler takes 20 steps per scene step",
            20, 64, 16, kMuted);
   for (int k = 0; k < cols; ++k) {
     const double cx = left + k * (cell + gap) + cell / 2.0;

@@ -12,55 +12,73 @@ const std::vector<Method>& table() {
        "lecture: diagonal-space projection + inversion filter (+ Newton safeguards)",
        {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
         "solver.integrator=implicit-euler", "solver.step_expansion=true",
-        "solver.friction_crossing_stop=true"}},
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false"}},
       {"plain-line-search",
        "lecture without Newton's safeguards (halving only)",
        {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
         "solver.integrator=implicit-euler", "solver.step_expansion=false",
-        "solver.friction_crossing_stop=false"}},
+        "solver.friction_crossing_stop=false", "mass_spring.enabled=false"}},
       {"full-eigen-clamp",
        "6x6 eigenvalue clamp + inversion filter",
        {"material.model=neo-hookean", "solver.projection=full", "solver.inversion_filter=true",
         "solver.integrator=implicit-euler", "solver.step_expansion=true",
-        "solver.friction_crossing_stop=true"}},
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false"}},
       {"no-projection",
        "no projection (plain Newton) + inversion filter",
        {"material.model=neo-hookean", "solver.projection=none", "solver.inversion_filter=true",
         "solver.integrator=implicit-euler", "solver.step_expansion=true",
-        "solver.friction_crossing_stop=true"}},
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false"}},
       {"no-inversion-filter",
        "diagonal projection, backtracking only",
        {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=false",
         "solver.integrator=implicit-euler", "solver.step_expansion=true",
-        "solver.friction_crossing_stop=true"}},
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false"}},
       {"symplectic-euler",
        "symplectic Euler (explicit), neo-Hookean",
        {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
         "solver.integrator=symplectic-euler", "solver.step_expansion=true",
-        "solver.friction_crossing_stop=true"},
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false"},
        20},
       {"linear",
        "linear elasticity, projected Newton",
        {"material.model=linear", "solver.projection=diagonal", "solver.inversion_filter=true",
         "solver.integrator=implicit-euler", "solver.step_expansion=true",
-        "solver.friction_crossing_stop=true"}},
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false"}},
       {"arap",
        "ARAP, projected Newton",
        {"material.model=arap", "solver.projection=diagonal", "solver.inversion_filter=true",
         "solver.integrator=implicit-euler", "solver.step_expansion=true",
-        "solver.friction_crossing_stop=true"}},
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false"}},
       {"stable-neo-hookean",
        "stable neo-Hookean, projected Newton",
        {"material.model=stable-neo-hookean", "solver.projection=diagonal",
         "solver.inversion_filter=true", "solver.integrator=implicit-euler",
-        "solver.step_expansion=true", "solver.friction_crossing_stop=true"}},
+        "solver.step_expansion=true", "solver.friction_crossing_stop=true",
+        "mass_spring.enabled=false"}},
+      // Stability only (stability_methods()): keep it after every study method.
+      {"mass-spring",
+       "mass-spring (the course's springs, the scene's k), projected Newton",
+       {"mass_spring.enabled=true", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_crossing_stop=true"}},
   };
   return methods;
+}
+
+// The table's rows before the first one the study does not take.
+size_t study_method_count() {
+  size_t n = 0;
+  while (n < table().size() && std::string(table()[n].name) != "mass-spring") ++n;
+  return n;
 }
 
 }  // namespace
 
 std::span<const Method> study_methods() {
+  return std::span<const Method>(table()).first(study_method_count());
+}
+
+std::span<const Method> stability_methods() {
   return table();
 }
 
@@ -71,6 +89,8 @@ const Method* find_method(const std::string& name) {
 }
 
 std::string method_model(const Method& method) {
+  for (const char* o : method.overrides)
+    if (std::string(o) == "mass_spring.enabled=true") return "mass-spring";
   const std::string key = "material.model=";
   for (const char* o : method.overrides)
     if (std::string(o).starts_with(key)) return std::string(o).substr(key.size());

@@ -7,6 +7,13 @@
 //   no-inversion-filter the same, with only backtracking (no det F > 0 step bound)
 //   symplectic-euler   explicit, on the same energies, `substeps` steps per scene step
 //   linear, arap, stable-neo-hookean  the invertible models, lecture's solver settings
+// Every one of them switches the course's springs off (mass_spring.enabled=false), so a
+// course scene's springs do not leak into a neo-Hookean row. The stability sweep adds one
+// row the study does not take (stability_methods()):
+//   mass-spring        the course's springs instead of the triangles, with the scene's k
+//                      (the stress scenes: the default 1e5 N/m, the base square's E per unit
+//                      thickness), lecture's solver settings: nothing resists a triangle's
+//                      collapse, so a squash inverts it where neo-Hookean holds
 #pragma once
 
 #include <span>
@@ -21,15 +28,19 @@ struct Method {
   const char* name;                    // CSV/table key
   const char* label;                   // legend text
   std::vector<const char*> overrides;  // every solver/model key, so no scene setting leaks in
+                                       // (material parameters E, nu, k: the scene's)
   int substeps = 1;  // steps per scene step in the stability sweep (explicit: tiny steps)
   bool implicit() const { return substeps == 1; }
 };
 
 std::span<const Method> study_methods();
+// study_methods() and, after them, the rows only the stability sweep runs (mass-spring: a
+// verdict teaches there, an error against its own reference in the study would not).
+std::span<const Method> stability_methods();
 const Method* find_method(const std::string& name);
 
-// The material model the method sets ("neo-hookean", "linear", ...): methods of one model
-// share one reference in the study, so only their errors compare with each other.
+// The material model the method sets ("neo-hookean", "linear", ..., "mass-spring"): methods of one
+// model share one reference in the study, so only their errors compare with each other.
 std::string method_model(const Method& method);
 
 // The scene with the method's settings applied (time.h is divided by `substeps` when

@@ -18,7 +18,7 @@ std::string failure_time(const StabilityCell& c) {
 StabilityResult run_stability(const SweepOptions& options) {
   StabilityResult result;
   result.quick = options.quick;
-  for (const Method& m : study_methods()) {
+  for (const Method& m : stability_methods()) {
     result.methods.push_back(m.name);
     result.method_labels.push_back(m.label);
   }
@@ -30,7 +30,7 @@ StabilityResult run_stability(const SweepOptions& options) {
     result.scenes.push_back(s.name);
     result.scene_labels.push_back(s.label);
   }
-  for (const Method& m : study_methods()) {
+  for (const Method& m : stability_methods()) {
     for (size_t k = 0; k < scenes.size(); ++k) {
       if (options.stop_requested()) {
         result.stopped = true;
@@ -121,7 +121,7 @@ std::string stability_markdown(const StabilityResult& r) {
   for (size_t k = 0; k < r.scenes.size(); ++k)
     o << "- `" << r.scenes[k] << "`: " << r.scene_labels[k] << "\n";
   o << "\nMethods (each is only scene settings, `--set` on any command):\n\n";
-  for (const Method& m : study_methods())
+  for (const Method& m : stability_methods())
     o << "- `" << m.name << "`: " << m.label << " — `" << method_command_line(m) << "`"
       << (m.substeps > 1 ? " with h / " + std::to_string(m.substeps) : "") << "\n";
   o << "\nWall-clock seconds inside the solver for each whole run:\n\n| method |";

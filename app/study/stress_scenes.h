@@ -2,7 +2,9 @@
 // source is the TOML files assets/scenes/stress-*.toml, embedded by invfree_scene_io
 // (scene_io/builtin_scenes.h), so the command needs no asset path at run time, and
 // `invfree simulate --scene assets/scenes/stress-h0.1.toml` runs the very same scene.
-// They are run by path, not offered as built-in scene names.
+// They are run by path, not offered as built-in scene names. After them come the course's
+// scenes that teach something under stress (course-5-moving-dirichlet, the course's squash),
+// embedded like every built-in scene.
 #pragma once
 
 #include <optional>
@@ -19,7 +21,8 @@ struct StressScene {
   std::string toml;   // the file's text
 };
 
-// Every embedded stress scene, in the order of the stability table's columns.
+// Every embedded stress scene and the course's stress columns, in the order of the
+// stability table's columns.
 const std::vector<StressScene>& stress_scenes();
 
 // Parses and validates a stress scene; on failure returns nothing and sets `error`.

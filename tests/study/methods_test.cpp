@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -24,6 +25,7 @@ TEST(Methods, EachIsAValidSetOfSceneOverrides) {
     s.inversion_filter = false;
     s.integrator = Integrator::SymplecticEuler;
     s.model = Model::Arap;
+    s.has_mass_spring = true;  // a course scene's springs must not leak in either
     EXPECT_EQ(apply_method(m, s, false), "") << m.name;
     EXPECT_EQ(find_method(m.name), &m);
     SceneDef again;
@@ -33,6 +35,42 @@ TEST(Methods, EachIsAValidSetOfSceneOverrides) {
   }
   EXPECT_EQ(names.size(), 9u);
   EXPECT_EQ(find_method("nonexistent"), nullptr);
+}
+
+TEST(Methods, TheStabilitySweepAddsTheSpringsAfterTheStudysMethods) {
+  const auto study = study_methods();
+  const auto stability = stability_methods();
+  ASSERT_GT(stability.size(), study.size());
+  for (size_t k = 0; k < study.size(); ++k)
+    EXPECT_EQ(&stability[k], &study[k]) << "the study's rows come first, in their order";
+  const Method* springs = find_method("mass-spring");
+  ASSERT_NE(springs, nullptr);
+  EXPECT_TRUE(std::any_of(stability.begin() + static_cast<long>(study.size()), stability.end(),
+                          [&](const Method& m) { return &m == springs; }));
+  for (const Method& m : study) EXPECT_NE(&m, springs) << "the study does not take the springs";
+  // The solver settings are the lecture's and do not come from the scene; the spring
+  // stiffness, like E and nu for the other rows, does.
+  SceneDef s;
+  s.projection = HessianProjection::None;
+  s.inversion_filter = false;
+  s.integrator = Integrator::SymplecticEuler;
+  s.step_expansion = false;
+  s.spring_stiffness = 2e4;
+  ASSERT_EQ(apply_method(*springs, s, true), "");
+  SceneDef lecture;
+  ASSERT_EQ(apply_method(*find_method("lecture"), lecture, true), "");
+  EXPECT_TRUE(s.has_mass_spring);
+  EXPECT_FALSE(s.has_triangle_elasticity());
+  EXPECT_FALSE(lecture.has_mass_spring);
+  EXPECT_EQ(s.projection, lecture.projection);
+  EXPECT_EQ(s.inversion_filter, lecture.inversion_filter);
+  EXPECT_EQ(s.integrator, lecture.integrator);
+  EXPECT_EQ(s.step_expansion, lecture.step_expansion);
+  EXPECT_EQ(s.friction_crossing_stop, lecture.friction_crossing_stop);
+  EXPECT_DOUBLE_EQ(s.h, SceneDef{}.h);
+  EXPECT_DOUBLE_EQ(s.spring_stiffness, 2e4);
+  EXPECT_EQ(method_model(*springs), "mass-spring");
+  EXPECT_EQ(method_model(*find_method("lecture")), "neo-hookean");
 }
 
 TEST(Methods, SettingsAreTheIssuesFamilies) {
@@ -65,7 +103,7 @@ TEST(Methods, SettingsAreTheIssuesFamilies) {
             "--set material.model=neo-hookean --set solver.projection=none --set "
             "solver.inversion_filter=true "
             "--set solver.integrator=implicit-euler --set solver.step_expansion=true "
-            "--set solver.friction_crossing_stop=true");
+            "--set solver.friction_crossing_stop=true --set mass_spring.enabled=false");
 }
 
 TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
@@ -77,7 +115,11 @@ TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
   }
   std::set<std::string> embedded;
   for (const StressScene& s : stress_scenes()) {
-    embedded.insert(s.name);
+    // Besides the stress files, only course scenes (the built-in scenes' own files).
+    if (s.name.rfind("stress-", 0) == 0)
+      embedded.insert(s.name);
+    else
+      EXPECT_EQ(s.name.rfind("course-", 0), 0u) << s.name;
     EXPECT_NE(s.label, s.name) << s.name << " has no column heading in stress_scenes.cpp";
     std::string error;
     auto scene = load_stress_scene(s, &error);
