@@ -288,6 +288,10 @@ void contact_section(LiveController& lc, PanelState& ps) {
                      false))
     apply(lc, next);
   ImGui::EndDisabled();
+  // Switches the boundary's contact with itself (docs/method.md#self-contact): off, a fine
+  // mesh's folds pass through themselves; the class sees what the term prevents.
+  if (ImGui::Checkbox("self-contact (boundary against itself)", &next.has_self_contact))
+    apply(lc, next);
   ImGui::BeginDisabled(!next.has_ceiling);
   double speed = -next.ceiling_velocity;
   if (clamped_slider(lc, ps, "ceiling speed (m/s)", "ceiling speed", &speed, kCeilingSpeedRange,
