@@ -727,8 +727,9 @@ static std::string start_imgui(LiveAppImpl& a) {
 // The UI scale a window starts with: its content scale (HiDPI) times how much larger than
 // 1280x720 it is (never smaller), in steps of 0.25: 1 at 1280x720, 1.5 at 1920x1080.
 static float default_ui_scale(GLFWwindow* window) {
-  float cx = 1.0f, cy = 1.0f;
+  float cx = 1.0f;
 #ifndef __EMSCRIPTEN__
+  float cy = 1.0f;
   glfwGetWindowContentScale(window, &cx, &cy);
 #endif
   int w = 0, h = 0;

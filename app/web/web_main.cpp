@@ -21,10 +21,12 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "app/live/course.h"
 #include "app/live/live_app.h"
-#include "scene_io/builtin_scenes.h"
 #include "scene/scene.h"
+#include "scene_io/builtin_scenes.h"
 
 namespace {
 
@@ -103,11 +105,17 @@ void show_error(const std::string& message) {
 
 std::unique_ptr<LiveApp> open_app() {
   invfree::live::LiveOptions o;
-  for (const auto& e : invfree::builtin_scenes()) {
-    const invfree::SceneLoad loaded = invfree::load_builtin_scene(e.name);
-    if (loaded.scene) o.scenes.push_back({std::string(e.name), *loaded.scene});
+  // The picker in the desktop's order (app/live_command.cpp): the course's scenes first,
+  // in chapter order, then the others; `compress` is shown first, as `invfree live` does.
+  std::vector<std::string> names;
+  for (const auto& e : invfree::builtin_scenes()) names.emplace_back(e.name);
+  invfree::live::put_course_first(names);
+  for (const std::string& name : names) {
+    const invfree::SceneLoad loaded = invfree::load_builtin_scene(name);
+    if (loaded.scene) o.scenes.push_back({name, *loaded.scene});
   }
-  const std::string scene = query_string("scene");
+  std::string scene = query_string("scene");
+  if (scene.empty()) scene = "compress";
   for (size_t i = 0; i < o.scenes.size(); ++i)
     if (o.scenes[i].label == scene) o.selected = static_cast<int>(i);
   o.paused = query_int("paused", 0) != 0;

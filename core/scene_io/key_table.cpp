@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <type_traits>
 #include <utility>
 
@@ -148,7 +150,8 @@ std::string read_choice_field(const KeySpec& k, SceneDef& s, MaterialInput&, con
   if (!n.is_string()) return "expected a string, got " + toml_type_name(n);
   const std::string text = n.as_string()->get();
   const auto v = parse(text);
-  if (!v) return "unknown value " + quoted(text) + " (expected one of " + choice_list(k) + ")";
+  if (!v)  // invfree:: so that libc++'s std::quoted (found by ADL) is not taken
+    return "unknown value " + invfree::quoted(text) + " (expected one of " + choice_list(k) + ")";
   s.*F = *v;
   return "";
 }
@@ -418,8 +421,18 @@ std::string apply_material(SceneDef& s, const MaterialInput& in) {
 
 std::string toml_number(double v) {
   char buf[64];
+#ifdef __EMSCRIPTEN__
+  // emscripten 3.1.6's libc++ has no floating-point std::to_chars: the shortest %g that
+  // reads back to v (the web page; the same number, possibly spelt otherwise).
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  std::string t(buf);
+#else
   const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
   std::string t(buf, ec == std::errc() ? end : buf);
+#endif
   const size_t e = t.find('e');
   if (e == std::string::npos) {
     if (t.find_first_of(".ni") == std::string::npos) t += ".0";  // "100" would be an integer

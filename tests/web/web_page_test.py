@@ -198,8 +198,11 @@ def test_touch_tap(driver, url):
     # bar) plays the paused page and a second one pauses it; a tap on the panel's empty
     # part below its plots does neither.
     state = load(driver, url + "?paused=1")
-    panel_x = 0.5 * (state["widgets"]["min_det_plot"][0] + state["widgets"]["min_det_plot"][2])
-    panel_y = state["widgets"]["min_det_plot"][3] + 40
+    plot = state["widgets"]["energy_plot"]  # the plots' first tab, the panel's last widget
+    panel_x = 0.5 * (plot[0] + plot[2])
+    panel_y = plot[3] + 40
+    if panel_y >= HEIGHT:
+        fail(f"the panel's plot ends at y {plot[3]:.0f}: no empty panel below it to tap in a {HEIGHT} px page")
     touch_tap(driver, panel_x, panel_y)
     frames = pd.page_state(driver)["frames"]
     after_panel = pd.wait_for(driver, lambda s: s["frames"] >= frames + 5, "frames after a tap on the panel")
