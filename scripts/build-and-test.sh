@@ -8,8 +8,13 @@
 #      on, -g1: line tables for the reports' stack traces, a third less compile time than -g),
 #      every test again except those labelled `heavy` (long runs of code the other tests
 #      already cover; tests/CMakeLists.txt says which, and they run in the release stage)
+#   4. (only when asked: stage "web") the web page: scripts/install-web-deps.sh, scripts/build-web.sh
+#      and its tests in headless Chromium (ctest -L web; docs/web.md). Not in the default
+#      stages: it adds about 7 minutes on 2 cores (5.5 to build the page, 2 to test it), which
+#      CI's 25 minutes do not hold; without it the web test reports itself skipped.
 # INVFREE_CI_STAGES picks stages (default "release,fuzz,sanitize"), e.g.
 #   INVFREE_CI_STAGES=release bash scripts/build-and-test.sh    # the quick local check
+#   INVFREE_CI_STAGES=release,web bash scripts/build-and-test.sh  # + the page in a browser
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -35,5 +40,12 @@ if [[ $stages == *,sanitize,* ]]; then
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0" \
     ctest --preset sanitize --label-exclude heavy
+fi
+if [[ $stages == *,web,* ]]; then
+  stage "web page: build and test in headless Chromium"
+  bash scripts/install-web-deps.sh  # uses sudo itself where it needs root
+  bash scripts/build-web.sh
+  cmake --preset release >/dev/null
+  ctest --preset release -L web
 fi
 stage "done"

@@ -22,6 +22,12 @@ struct CommandResult {
   std::string out, err;
 };
 
+// True when `s` is one line: not empty, and its only newline ends it (what every error
+// message of the program must be).
+inline bool one_line(const std::string& s) {
+  return !s.empty() && s.find('\n') == s.size() - 1;
+}
+
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::ostringstream s;

@@ -15,15 +15,13 @@ namespace invfree {
 namespace {
 
 using test::CommandResult;
+using test::one_line;
 using test::slurp;
 
 CommandResult run(const std::string& args) {
   return test::run_command(INVFREE_EXE, args, false);
 }
 
-bool one_line(const std::string& s) {
-  return !s.empty() && s.find('\n') == s.size() - 1;
-}
 
 TEST(CliRules, MixingYoungAndLameOnTheCommandLineExitsTwoInEitherOrder) {
   for (const char* args : {"--set material.E=1e4 --set material.mu=1000",

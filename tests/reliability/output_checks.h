@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "tests/reliability/process.h"
+#include "tests/run_command.h"  // one_line
 
 namespace invfree::test {
 
@@ -56,9 +57,6 @@ inline int expect_only_complete_objs(const std::string& dir, int nodes, int tria
   return objs;
 }
 
-inline bool one_line(const std::string& err) {
-  return std::count(err.begin(), err.end(), '\n') == 1;
-}
 
 // A tmpfs of `size` mounted at `dir` for the scope's lifetime, when this process may.
 class TinyFilesystem {
