@@ -29,7 +29,7 @@ inline bool one_line(const std::string& s) {
 }
 
 inline std::string slurp(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();

@@ -17,7 +17,6 @@
 #include <thread>
 
 #include "tests/reliability/process.h"
-#include "tests/run_command.h"  // one_line
 
 namespace invfree::test {
 

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/run_command.h"  // slurp, one_line
+
 extern char** environ;
 
 namespace invfree::test {
@@ -49,13 +51,6 @@ struct ProcessResult {
   int code = -1;  // exit code, or -signal when killed by a signal
   std::string out, err;
 };
-
-inline std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 inline int decode_status(int status) {
   if (WIFEXITED(status)) return WEXITSTATUS(status);
