@@ -38,7 +38,8 @@ def load(driver, url):
                             "mobile": False})
     driver.get_log("browser")  # drop what an earlier page left
     driver.get(url)
-    return pd.wait_for(driver, lambda s: s["frames"] >= 3, "the page's first frames")
+    return pd.wait_for(driver, lambda s: s["frames"] >= 3, "the page's first frames",
+                       stop_on_console_error=True)
 
 
 def screenshot(driver):
@@ -195,14 +196,15 @@ def touch_tap(driver, x, y):
 
 def test_touch_tap(driver, url):
     # A tap on the picture (below the body, between the planes' hatching and the colour
-    # bar) plays the paused page and a second one pauses it; a tap on the panel's empty
-    # part below its plots does neither.
+    # bar) plays the paused page and a second one pauses it; a tap on the panel where it
+    # is empty (right of the mu slider, which has no label; the panel's last rows may reach
+    # the bottom of a 720 px page, so not below them) does neither.
     state = load(driver, url + "?paused=1")
-    plot = state["widgets"]["energy_plot"]  # the plots' first tab, the panel's last widget
-    panel_x = 0.5 * (plot[0] + plot[2])
-    panel_y = plot[3] + 40
-    if panel_y >= HEIGHT:
-        fail(f"the panel's plot ends at y {plot[3]:.0f}: no empty panel below it to tap in a {HEIGHT} px page")
+    mu, colours = state["widgets"]["mu"], state["widgets"]["colours"]  # colours: the panel's right edge
+    panel_x, panel_y = 0.5 * (mu[2] + colours[2]), 0.5 * (mu[1] + mu[3])
+    if colours[2] - mu[2] < 40:
+        fail(f"no empty panel right of the mu slider to tap in (slider ends at x {mu[2]:.0f}, "
+             f"the panel's widgets at {colours[2]:.0f})")
     touch_tap(driver, panel_x, panel_y)
     frames = pd.page_state(driver)["frames"]
     after_panel = pd.wait_for(driver, lambda s: s["frames"] >= frames + 5, "frames after a tap on the panel")
