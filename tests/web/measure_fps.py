@@ -50,7 +50,8 @@ def measure(driver, url, n_seg, frames):
     driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
                            {"width": 1280, "height": 720, "deviceScaleFactor": 1, "mobile": False})
     driver.get(f"{url}?n_seg={n_seg}")
-    first = pd.wait_for(driver, lambda s: s["frames"] >= 1, "the first frame")
+    first = pd.wait_for(driver, lambda s: s["frames"] >= 1, "the first frame",
+                        stop_on_console_error=True)
     if first["n_seg"] != n_seg:
         raise SystemExit(f"n_seg={n_seg} was not applied (page note: {first['note']})")
     driver_pid = driver.service.process.pid

@@ -86,15 +86,24 @@ def page_state(driver):
     return json.loads(text) if text else None
 
 
-def wait_for(driver, predicate, what, timeout=60.0):
+def wait_for(driver, predicate, what, timeout=60.0, stop_on_console_error=False):
     """Polls window.invfree until predicate(state) holds; raises naming `what` and the last
-    state when it does not within `timeout` seconds (a hang guard, not a speed check)."""
+    state when it does not within `timeout` seconds (a hang guard, not a speed check).
+    With stop_on_console_error, a console error (the page's program stopped: an uncaught
+    exception or an abort, see shell.html) raises at once, with the page's status line."""
     deadline = time.monotonic() + timeout
     state = None
     while time.monotonic() < deadline:
         state = page_state(driver)
         if state and predicate(state):
             return state
+        if stop_on_console_error:
+            errors = console_errors(driver)
+            if errors:
+                status = driver.execute_script(
+                    "const s = document.getElementById('status'); return s ? s.textContent : '';")
+                raise AssertionError(f"console error while waiting for {what}: {errors}; "
+                                     f"the page says: {status!r}")
         time.sleep(0.05)
     raise AssertionError(f"timed out waiting for {what}; last window.invfree: {state}")
 

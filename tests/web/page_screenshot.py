@@ -32,7 +32,8 @@ def main():
         driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
                                {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False})
         driver.get(server.url + ("?" + args.query if args.query else ""))
-        pd.wait_for(driver, lambda s: s["steps"] >= args.steps, f"{args.steps} steps", timeout=600)
+        pd.wait_for(driver, lambda s: s["steps"] >= args.steps, f"{args.steps} steps", timeout=600,
+                    stop_on_console_error=True)
         from selenium.webdriver.common.action_chains import ActionChains
         from selenium.webdriver.common.keys import Keys
         actions = ActionChains(driver)
