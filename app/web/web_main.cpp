@@ -34,10 +34,11 @@ using invfree::live::LiveApp;
 
 // The n_seg slider's maximum in the page (docs/web.md, "Speed"): the largest mesh whose
 // step, timed in the page in headless Chromium on the project's 2-core machine while it was
-// loaded (load average 8-15), stays under half of a 30 frames/s frame, leaving the other
-// half for the page's drawing calls: 11.4 and 14.7 ms at n_seg 40, 14.3 to 19.0 ms at 48
+// loaded (load average 5-5.7), stays under half of a 30 frames/s frame, leaving the other
+// half for the page's drawing calls: 13.2 to 15.4 ms at n_seg 48 in three runs, 16.1 to
+// 24.8 ms at 56; up to 48 the frame rate is that of n_seg 4, from 56 on the step lowers it
 // (tests/web/measure_fps.py). Larger meshes can still be asked for in the URL (?n_seg=N).
-constexpr int kWebMaxSegments = 40;
+constexpr int kWebMaxSegments = 48;
 
 struct Page {
   std::unique_ptr<LiveApp> app;
