@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v emcc >/dev/null || [ ! -f build/web-deps/imgui/imgui.cpp ]; then
-  echo "build-web: the web toolchain is missing (run: sudo scripts/install-web-deps.sh)" >&2
+  echo "build-web: the web toolchain is missing (run: bash scripts/install-web-deps.sh)" >&2
   exit 1
 fi
 cmake --preset web >/dev/null

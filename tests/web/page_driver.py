@@ -26,17 +26,17 @@ def missing_toolchain(page_dir):
     try:
         import selenium  # noqa: F401  (python3-selenium)
     except ImportError:
-        return "python3-selenium is not installed (sudo scripts/install-web-deps.sh)"
+        return "python3-selenium is not installed (bash scripts/install-web-deps.sh)"
     try:
         import PIL  # noqa: F401  (python3-pil)
     except ImportError:
-        return "python3-pil is not installed (sudo scripts/install-web-deps.sh)"
+        return "python3-pil is not installed (bash scripts/install-web-deps.sh)"
     for program in ("chromium", "chromedriver"):
         if shutil.which(program) is None:
-            return f"{program} is not installed (sudo scripts/install-web-deps.sh)"
+            return f"{program} is not installed (bash scripts/install-web-deps.sh)"
     if not os.path.isfile(os.path.join(page_dir, "index.html")):
         return (f"the page is not built: no {page_dir}/index.html "
-                "(scripts/build-web.sh, after sudo scripts/install-web-deps.sh)")
+                "(bash scripts/build-web.sh, after bash scripts/install-web-deps.sh)")
     return ""
 
 
