@@ -6,9 +6,10 @@
 #include <limits>
 #include <type_traits>
 
-#include "scene/fixed_nodes.h"
 #include "collision/intersection_check.h"
+#include "scene/fixed_nodes.h"
 #include "scene/initial_state.h"
+#include "scene/scene_mesh.h"
 #include "solver/self_contact_filter.h"
 #include "solver/step_workspace.h"
 
@@ -76,7 +77,7 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
 // The boundary of every body, found once per mesh (the first step that needs it).
 const Boundary& boundary_of(Simulation& sim) {
   StepWorkspace& ws = *sim.workspace;
-  if (ws.boundary.edges.empty()) ws.boundary = find_boundary(sim.mesh);
+  if (ws.boundary.edges.empty()) ws.boundary = find_boundary(sim.mesh, sim.mesh.body_begin);
   return ws.boundary;
 }
 
@@ -111,6 +112,8 @@ void fill_problem(Simulation& sim) {
   p.x_start = sim.x;
   p.x_tilde = sim.x + s.h * sim.v;
   p.elasticity = {s.model, s.lame, s.projection, s.inversion_filter, s.has_triangle_elasticity()};
+  p.elasticity.triangle_lame = sim.triangle_lame.empty() ? nullptr : sim.triangle_lame.data();
+  const double* node_area = sim.node_contact_area.empty() ? nullptr : sim.node_contact_area.data();
   p.springs.on = s.has_mass_spring;
   p.springs.stiffness = s.spring_stiffness;
   p.springs.project = s.projection != HessianProjection::None;
@@ -121,18 +124,20 @@ void fill_problem(Simulation& sim) {
   p.ground.barrier = barrier;
   p.ground.sloped = !(s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0);
   p.ground.normal = ground_unit_normal(s);
+  p.ground.node_area = node_area;
   p.friction.on = s.has_ground && s.friction > 0.0;
   p.friction.sloped = p.ground.sloped;
   p.friction.tangent = Vec2(p.ground.normal.y(), -p.ground.normal.x());
   if (p.friction.on) {
     p.friction.weight.resize(n);
     for (int i = 0; i < n; ++i)
-      p.friction.weight[i] =
-          friction_weight(s.friction, ground_gap(s, sim.x[2 * i], sim.x[2 * i + 1]), barrier);
+      p.friction.weight[i] = friction_weight(
+          s.friction, ground_gap(s, sim.x[2 * i], sim.x[2 * i + 1]), p.ground.at(i));
     p.friction.eps_u = kFrictionEpsV * s.h;
   }
   p.ceiling.on = s.has_ceiling;
   p.ceiling.barrier = barrier;
+  p.ceiling.node_area = node_area;
   if (p.ceiling.on) {
     p.ceiling_penalty.target = next_ceiling_nominal(s, sim.ceiling_nominal);
     // Warm start: the stiffness the last step needed (state), at least the demo's initial
@@ -193,7 +198,8 @@ StepReport report_of(const NewtonResult& r, int max_iterations) {
 double next_ceiling_stiffness(const Simulation& sim, const VecX& z) {
   const StepProblem& p = sim.workspace->problem;
   const int n = sim.mesh.node_count();
-  const double reaction = ceiling_push(z.data(), n, z[2 * n], p.ceiling.barrier);
+  const double reaction =
+      ceiling_push(z.data(), n, z[2 * n], p.ceiling.barrier, p.ceiling.node_area);
   const double h = sim.scene.h;
   return std::max(p.ceiling_penalty.stiffness, 2.0 * h * h * reaction / (sim.scene.tol * h));
 }
@@ -240,7 +246,7 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
   VecX& grad = ws.newton.gradient;
   grad.setZero(2 * n);
   if (s.has_triangle_elasticity())
-    add_elastic_gradient(sim.mesh, s.model, s.lame, sim.x, 1.0, grad);
+    add_elastic_gradient(sim.mesh, s.model, s.lame, sim.x, 1.0, grad, sim.triangle_lame);
   if (p.springs.on) add_mass_spring_gradient(p.springs, sim.x.data(), 1.0, grad.data());
   VecX& v_new = ws.v_new;
   v_new = sim.v;
@@ -259,7 +265,7 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
           const double slip =
               term.sloped ? s.h * t.dot(sim.v.segment<2>(2 * i)) : s.h * sim.v[2 * i];
           const double f = friction_derivative(
-              slip, friction_weight(s.friction, gap, p.ground.barrier), term.eps_u);
+              slip, friction_weight(s.friction, gap, p.ground.at(i)), term.eps_u);
           d.gx += term.sloped ? f * t.x() : f;
           if (term.sloped) d.gy += f * t.y();
         }
@@ -282,13 +288,15 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
 Simulation make_simulation(const SceneDef& scene) {
   Simulation sim;
   sim.scene = scene;
-  sim.mesh = square_mesh(scene.side, scene.n_seg);
-  sim.node_mass = node_masses(sim.mesh, scene.density, scene.mass);
+  sim.mesh = scene_mesh(scene);
+  sim.node_mass = scene_node_masses(scene, sim.mesh);
+  sim.node_contact_area = scene_node_contact_areas(scene, sim.mesh);
+  sim.triangle_lame = scene_triangle_lame(scene, sim.mesh);
   double total = 0.0;
   for (double m : sim.node_mass) total += m;
   sim.ceiling_mass = total / sim.mesh.node_count();
   sim.x = initial_positions(scene, sim.mesh);
-  sim.v = scene.initial_velocity.replicate(sim.mesh.node_count(), 1);
+  sim.v = initial_velocities(scene, sim.mesh);
   sim.ceiling_y = sim.ceiling_nominal = scene.ceiling_y;
   sim.workspace = std::make_unique<StepWorkspace>();
   NewtonWorkspace& ws = sim.workspace->newton;
@@ -313,12 +321,25 @@ Simulation make_simulation(const SceneDef& scene) {
   return sim;
 }
 
+namespace {
+// A body's own material changes no mesh (update_scene refreshes triangle_lame).
+bool same_bodies_but_material(const std::vector<BodyDef>& a, const std::vector<BodyDef>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); ++k)
+    if (a[k].side != b[k].side || a[k].n_seg != b[k].n_seg || a[k].offset != b[k].offset ||
+        a[k].velocity != b[k].velocity)
+      return false;
+  return true;
+}
+}  // namespace
+
 bool needs_new_mesh(const SceneDef& old, const SceneDef& next) {
   return old.side != next.side || old.n_seg != next.n_seg || old.density != next.density ||
          old.mass != next.mass || old.jitter != next.jitter || old.seed != next.seed ||
          old.has_ceiling != next.has_ceiling || old.has_mass_spring != next.has_mass_spring ||
          old.has_fixed != next.has_fixed || old.fixed_corners != next.fixed_corners ||
-         old.fixed_box_min != next.fixed_box_min || old.fixed_box_max != next.fixed_box_max;
+         old.fixed_box_min != next.fixed_box_min || old.fixed_box_max != next.fixed_box_max ||
+         !same_bodies_but_material(old.bodies, next.bodies);
 }
 
 void update_scene(Simulation& sim, const SceneDef& scene) {
@@ -327,6 +348,7 @@ void update_scene(Simulation& sim, const SceneDef& scene) {
     return;
   }
   sim.scene = scene;
+  sim.triangle_lame = scene_triangle_lame(scene, sim.mesh);
 }
 
 StepReport step(Simulation& sim) {
@@ -379,8 +401,9 @@ double min_plane_gap(const Simulation& sim) {
 double min_self_gap(const Simulation& sim) {
   if (!sim.scene.has_self_contact || !sim.workspace) return INFINITY;
   StepWorkspace& ws = *sim.workspace;
-  const Boundary& boundary =
-      ws.boundary.edges.empty() ? find_boundary(sim.mesh) : ws.boundary;  // before any step
+  const Boundary& boundary = ws.boundary.edges.empty()
+                                 ? find_boundary(sim.mesh, sim.mesh.body_begin)
+                                 : ws.boundary;  // before any step
   std::vector<PointEdgePair> pairs;
   BroadPhaseGrid grid;
   point_edge_candidates(boundary, sim.x, sim.scene.dhat, grid, pairs);
@@ -391,7 +414,9 @@ double min_self_gap(const Simulation& sim) {
 double total_energy(const Simulation& sim) {
   const SceneDef& s = sim.scene;
   const Gravity gravity{s.has_gravity, s.gravity};
-  double e = s.has_triangle_elasticity() ? elastic_energy(sim.mesh, s.model, s.lame, sim.x) : 0.0;
+  double e = s.has_triangle_elasticity()
+                 ? elastic_energy(sim.mesh, s.model, s.lame, sim.x, sim.triangle_lame)
+                 : 0.0;
   if (s.has_mass_spring) {
     const MassSpring springs{true, s.spring_stiffness, true, &sim.workspace->springs, nullptr};
     e += mass_spring_energy(springs, sim.x.data());

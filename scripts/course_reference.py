@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Reference trajectories of the course scenes from the public solid-sim-tutorial.
 
-Runs each of the tutorial's chapters 1_mass_spring .. 5_mov_dirichlet as it is (its own
+Runs each of the tutorial's chapters 1_mass_spring .. 5_mov_dirichlet, 7_self_contact and
+8_self_friction (the scenes `stack` and `stack-friction`) as it is (its own
 simulator.py, settings unchanged) with pygame replaced by a stub, Newton's tolerance set to
 1e-6 instead of the scripts' 1e-2 (the only change, made by wrapping
 time_integrator.step_forward), and writes the body's node positions every 10 steps over
@@ -26,6 +27,8 @@ CHAPTERS = [
     ("3_contact", "course-3-contact"),
     ("4_friction", "course-4-friction"),
     ("5_mov_dirichlet", "course-5-moving-dirichlet"),
+    ("7_self_contact", "stack"),
+    ("8_self_friction", "stack-friction"),
 ]
 STEPS = 200
 EVERY = 10
@@ -56,20 +59,26 @@ def _pygame_stub():
 
 
 def _chapter_files(tutorial, chapter, into):
+    """Copies the chapter's .py files, its subfolders' too (7 and 8 have distance/)."""
     if os.path.isdir(os.path.join(tutorial, chapter)):
         src = os.path.join(tutorial, chapter)
-        for name in os.listdir(src):
-            if name.endswith(".py"):
-                with open(os.path.join(src, name)) as f, open(os.path.join(into, name), "w") as g:
-                    g.write(f.read())
+        for root, _, files in os.walk(src):
+            for name in files:
+                if name.endswith(".py"):
+                    rel = os.path.relpath(os.path.join(root, name), src)
+                    os.makedirs(os.path.join(into, os.path.dirname(rel)), exist_ok=True)
+                    with open(os.path.join(root, name)) as f, open(os.path.join(into, rel), "w") as g:
+                        g.write(f.read())
         return
     names = subprocess.check_output(
-        ["git", "--git-dir", tutorial, "ls-tree", "--name-only", "HEAD", chapter + "/"], text=True
-    ).split()
+        ["git", "--git-dir", tutorial, "ls-tree", "-r", "--name-only", "HEAD", chapter + "/"],
+        text=True).split()
     for path in names:
         if path.endswith(".py"):
+            rel = os.path.relpath(path, chapter)
             text = subprocess.check_output(["git", "--git-dir", tutorial, "show", "HEAD:" + path])
-            with open(os.path.join(into, os.path.basename(path)), "wb") as g:
+            os.makedirs(os.path.join(into, os.path.dirname(rel)), exist_ok=True)
+            with open(os.path.join(into, rel), "wb") as g:
                 g.write(text)
 
 
@@ -85,8 +94,11 @@ def run_chapter(tutorial, chapter, body_nodes_only=True):
         sys.path.insert(0, work)
         os.chdir(work)
         for name in ["square_mesh", "time_integrator", "utils", "InertiaEnergy", "MassSpringEnergy",
-                     "GravityEnergy", "BarrierEnergy", "FrictionEnergy", "SpringEnergy"]:
+                     "GravityEnergy", "BarrierEnergy", "FrictionEnergy", "SpringEnergy",
+                     "NeoHookeanEnergy"]:
             sys.modules.pop(name, None)
+        for name in [m for m in sys.modules if m == "distance" or m.startswith("distance.")]:
+            sys.modules.pop(name)
         sys.modules["pygame"] = _pygame_stub()
         try:
             import time_integrator

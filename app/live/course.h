@@ -1,5 +1,6 @@
 // The course: the built-in scenes that walk through the public solid-sim-tutorial's
-// chapters in order (course-1 ... course-5, then the lecture's demo `compress`), each with
+// chapters in order (course-1 ... course-5, the lecture's demo `compress`, then `stack` and
+// `stack-friction`), each with
 // its chapter's one-line idea. The live window's picker lists them first, in chapter order,
 // and its panel shows the selected chapter's idea (docs/scenes.md has the same table);
 // `compress`, the lecture's own scene, keeps its panel as it was (no idea line).
@@ -25,6 +26,8 @@ inline constexpr CourseChapter kCourse[] = {
     {"course-4-friction", 4, "lagged friction: sliding down a slope"},
     {"course-5-moving-dirichlet", 5, "a moving Dirichlet boundary: squashed by the ceiling"},
     {"compress", 6, nullptr},
+    {"stack", 7, "self-contact: two squares kept apart by the point-edge barrier and CCD"},
+    {"stack-friction", 8, "friction between the bodies, lagged as the ground's"},
 };
 
 // The chapter of a scene name, or nullptr when it is not one of the course's.

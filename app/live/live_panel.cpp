@@ -213,13 +213,13 @@ void material_section(LiveController& lc, PanelState& ps) {
   double v = 0.0;
   if (log_slider(ps, "##mu", "\xce\xbc", mu_map, next.lame.mu, &v)) {  // mu
     const MaterialEdit e = edit_mu(next.lame, v);
-    next.lame = e.lame;
+    set_material_of_every_body(next, e.lame);
     if (!e.note.empty()) lc.note = e.note;
     apply(lc, next);
   }
   if (log_slider(ps, "##lambda", "\xce\xbb", lambda_map, next.lame.lambda, &v)) {  // lambda
     const MaterialEdit e = edit_lambda(next.lame, v);
-    next.lame = e.lame;
+    set_material_of_every_body(next, e.lame);
     if (!e.note.empty()) lc.note = e.note;
     apply(lc, next);
   }
@@ -234,7 +234,7 @@ void material_section(LiveController& lc, PanelState& ps) {
   if ((e_enter || ImGui::IsItemDeactivatedAfterEdit()) && e_in != E) {
     const MaterialEdit e = edit_young(next.lame, e_in);
     lc.note = e.note;
-    next.lame = e.lame;
+    set_material_of_every_body(next, e.lame);
     apply(lc, next);
   }
   ImGui::SameLine();
@@ -246,7 +246,7 @@ void material_section(LiveController& lc, PanelState& ps) {
   if ((nu_enter || ImGui::IsItemDeactivatedAfterEdit()) && nu_in != nu) {
     const MaterialEdit e = edit_poisson(next.lame, nu_in);
     lc.note = e.note;
-    next.lame = e.lame;
+    set_material_of_every_body(next, e.lame);
     apply(lc, next);
   }
 }

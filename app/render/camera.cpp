@@ -19,8 +19,20 @@ FrameLayout frame_layout(int width, int height, PanelMode panel, double text_sca
 }
 
 WorldBox scene_world_box(const SceneDef& scene) {
-  const double half = 0.5 * scene.side;
-  double y0 = -half, y1 = half;
+  // Every body's square at rest; `side` and `half` are the largest body's.
+  double bx0 = INFINITY, bx1 = -INFINITY, by0 = INFINITY, by1 = -INFINITY, side = 0.0;
+  double sides = 0.0;
+  for (int k = 0; k < body_count(scene); ++k) {
+    const PlacedBody b = placed_body(scene, k);
+    bx0 = std::min(bx0, b.offset.x() - 0.5 * b.side);
+    bx1 = std::max(bx1, b.offset.x() + 0.5 * b.side);
+    by0 = std::min(by0, b.offset.y() - 0.5 * b.side);
+    by1 = std::max(by1, b.offset.y() + 0.5 * b.side);
+    side = std::max(side, b.side);
+    sides += b.side;
+  }
+  const double half = 0.5 * side;
+  double y0 = by0, y1 = by1;
   if (scene.has_ground) y0 = std::min(y0, scene.ground_y);
   if (scene.has_ceiling) y1 = std::max(y1, scene.ceiling_y);
   // Squashed between the planes down to the ceiling's stop gap, the square spreads
@@ -28,22 +40,25 @@ WorldBox scene_world_box(const SceneDef& scene) {
   // below the ground.
   double spread = 1.0;
   if (scene.has_ground && scene.has_ceiling) {
-    const double gap = std::max(scene.ceiling_stop - scene.ground_y, 0.25 * scene.side);
-    spread = std::clamp(scene.side / gap, 1.0, 4.0);
+    const double gap = std::max(scene.ceiling_stop - scene.ground_y, 0.25 * side);
+    spread = std::clamp(side / gap, 1.0, 4.0);
   }
-  const double band = std::max(0.15 * (y1 - y0), 0.1 * scene.side);  // visible plane depth
-  const double x_half = half * spread + 0.15 * scene.side;
-  double x0 = -x_half, x1 = x_half;
+  const double band = std::max(0.15 * (y1 - y0), 0.1 * side);  // visible plane depth
+  // Several bodies may end side by side on the ground, squashed, on either side of where
+  // they start (the stack's top square slides off the lower one): room for all of them.
+  const double margin =
+      (body_count(scene) > 1 ? sides * spread : half * (spread - 1.0)) + 0.15 * side;
+  double x0 = bx0 - margin, x1 = bx1 + margin;
   if (scene.has_ground && scene.ground_normal.x() != 0.0) {
     // A slope (the course's 4_friction): room for the body to slide one side length down
     // it, and the ground's lower end in the picture.
     const Vec2 n = ground_unit_normal(scene);
-    (n.x() > 0.0 ? x1 : x0) += (n.x() > 0.0 ? 1.0 : -1.0) * scene.side;
+    (n.x() > 0.0 ? x1 : x0) += (n.x() > 0.0 ? 1.0 : -1.0) * side;
     const double drop = std::abs(n.x() / std::max(n.y(), 0.087)) * std::max(-x0, x1);
     y0 = std::min(y0, scene.ground_y - drop);
   }
   // Hanging from fixed nodes with no ground (the course's 2_dirichlet): room to sag a side.
-  if (scene.has_fixed && scene.has_gravity && !scene.has_ground) y0 -= scene.side;
+  if (scene.has_fixed && scene.has_gravity && !scene.has_ground) y0 -= side;
   return {x0, x1, y0 - band, y1 + band};
 }
 

@@ -5,6 +5,7 @@
 // Inputs: each frame's state (in order) and its layout. Outputs: DrawOptions fields.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <string>
 
@@ -17,7 +18,9 @@ namespace invfree::render {
 // and cost the most triangles: they are left out, the outline kept.
 constexpr double kMinEdgeSpacingPixels = 6.0;
 inline bool edges_legible(const SceneDef& scene, double pixels_per_metre) {
-  return scene.side / scene.n_seg * pixels_per_metre >= kMinEdgeSpacingPixels;
+  double edge = body_edge_length(scene, 0);  // the finest body's
+  for (int k = 1; k < body_count(scene); ++k) edge = std::min(edge, body_edge_length(scene, k));
+  return edge * pixels_per_metre >= kMinEdgeSpacingPixels;
 }
 
 // The colour scale's range: Fixed (kDetFRange), Run (auto_det_f_range over every frame so

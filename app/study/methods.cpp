@@ -61,6 +61,14 @@ const std::vector<Method>& table() {
        {"mass_spring.enabled=true", "solver.projection=diagonal", "solver.inversion_filter=true",
         "solver.integrator=implicit-euler", "solver.step_expansion=true",
         "solver.friction_crossing_stop=true"}},
+      {"no-ccd",
+       "lecture without the CCD step bound (self-contact scenes only)",
+       {"material.model=neo-hookean", "solver.projection=diagonal", "solver.inversion_filter=true",
+        "solver.integrator=implicit-euler", "solver.step_expansion=true",
+        "solver.friction_crossing_stop=true", "mass_spring.enabled=false",
+        "self_contact.ccd=false"},
+       1,
+       true},
   };
   return methods;
 }
@@ -98,6 +106,8 @@ std::string method_model(const Method& method) {
 }
 
 std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps) {
+  if (method.self_contact_only && !scene.has_self_contact)
+    return "the scene has no self-contact, so nothing to take the CCD from";
   for (const char* o : method.overrides)
     if (std::string e = apply_override(scene, o); !e.empty()) return e;
   if (with_substeps) scene.h /= method.substeps;

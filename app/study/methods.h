@@ -8,12 +8,16 @@
 //   symplectic-euler   explicit, on the same energies, `substeps` steps per scene step
 //   linear, arap, stable-neo-hookean  the invertible models, lecture's solver settings
 // Every one of them switches the course's springs off (mass_spring.enabled=false), so a
-// course scene's springs do not leak into a neo-Hookean row. The stability sweep adds one
-// row the study does not take (stability_methods()):
+// course scene's springs do not leak into a neo-Hookean row. The stability sweep adds
+// rows the study does not take (stability_methods()):
 //   mass-spring        the course's springs instead of the triangles, with the scene's k
 //                      (the stress scenes: the default 1e5 N/m, the base square's E per unit
 //                      thickness), lecture's solver settings: nothing resists a triangle's
 //                      collapse, so a squash inverts it where neo-Hookean holds
+//   no-ccd             the lecture's row with self-contact but without the line search's
+//                      CCD bound (only the barrier's energy checks stop a step): where a
+//                      step jumps a node across an edge the run ends `intersected`; n/a on
+//                      scenes without self-contact
 #pragma once
 
 #include <span>
@@ -30,6 +34,7 @@ struct Method {
   std::vector<const char*> overrides;  // every solver/model key, so no scene setting leaks in
                                        // (material parameters E, nu, k: the scene's)
   int substeps = 1;  // steps per scene step in the stability sweep (explicit: tiny steps)
+  bool self_contact_only = false;  // n/a on a scene without self-contact
   bool implicit() const { return substeps == 1; }
 };
 

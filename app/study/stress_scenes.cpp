@@ -24,6 +24,8 @@ const std::vector<std::pair<std::string, std::string>>& headings() {
       {"stress-stiff", "E = 1e8 Pa"},
       {"stress-jitter", "jittered start (35%)"},
       {"stress-jitter-inverted", "jittered start, inverted (45%)"},
+      {"stress-fold", "64x64 fold (self-contact)"},
+      {"stress-stack-drop", "stack thrown at 20 m/s"},
       {"course-5-moving-dirichlet", "the course's squash (chapter 5)"},
   };
   return h;

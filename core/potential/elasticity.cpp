@@ -12,20 +12,24 @@ double cross(const Vec2& a, const Vec2& b) {
 }
 }  // namespace
 
-double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x) {
+double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x,
+                      std::span<const Lame> triangle_lame) {
   return visit_model(model, [&](auto m) {
-    return elastic_energy_range<decltype(m)>(mesh, lame, x.data(), 0, mesh.triangle_count());
+    return elastic_energy_range<decltype(m)>(
+        mesh, lame, x.data(), 0, mesh.triangle_count(),
+        triangle_lame.empty() ? nullptr : triangle_lame.data());
   });
 }
 
 void add_elastic_gradient(const Mesh& mesh, Model model, const Lame& lame, const VecX& x,
-                          double scale, VecX& g) {
+                          double scale, VecX& g, std::span<const Lame> triangle_lame) {
   visit_model(model, [&](auto m) {
     using M = decltype(m);
     for (int t = 0; t < mesh.triangle_count(); ++t) {
       const Mat46 dFdx = deformation_gradient_jacobian(mesh.rest_shape_inverse[t]);
       const Vec6 gt = TriangleElasticity<M>::gradient(
-          triangle_deformation_gradient(mesh, x.data(), t), dFdx, scale * mesh.rest_area[t], lame);
+          triangle_deformation_gradient(mesh, x.data(), t), dFdx, scale * mesh.rest_area[t],
+          triangle_lame.empty() ? lame : triangle_lame[t]);
       const auto& tri = mesh.triangles[t];
       for (int a = 0; a < 3; ++a) g.segment<2>(2 * tri[a]) += gt.segment<2>(2 * a);
     }

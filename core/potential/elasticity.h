@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
 
 #include "linalg/sparse_hessian.h"
 #include "material/models.h"
@@ -23,6 +24,10 @@ struct Elasticity {
   bool inversion_filter = true;  // bound steps so that no triangle inverts (when det F > 0 is
                                  // required by the model)
   bool on = true;                // off for a mass-spring scene: no triangle term at all
+  // Per triangle, when bodies of the scene have their own materials (scene/scene_mesh.h);
+  // nullptr: `lame` for every triangle.
+  const Lame* triangle_lame = nullptr;
+  const Lame& lame_of(int t) const { return triangle_lame ? triangle_lame[t] : lame; }
   bool filters_inversions() const {
     return on && inversion_filter && !model_allows_inversion(model);
   }
@@ -34,13 +39,14 @@ inline Mat2 triangle_deformation_gradient(const Mesh& mesh, const double* x, int
   return deformation_gradient(node(tri[0]), node(tri[1]), node(tri[2]), mesh.rest_shape_inverse[t]);
 }
 
-// sum of area_t Psi(F_t) over triangles [begin, end).
+// sum of area_t Psi(F_t) over triangles [begin, end); triangle_lame as Elasticity's.
 template <class M>
-double elastic_energy_range(const Mesh& mesh, const Lame& lame, const double* x, int begin,
-                            int end) {
+double elastic_energy_range(const Mesh& mesh, const Lame& lame, const double* x, int begin, int end,
+                            const Lame* triangle_lame = nullptr) {
   double e = 0.0;
   for (int t = begin; t < end; ++t)
-    e += mesh.rest_area[t] * M::energy_density(triangle_deformation_gradient(mesh, x, t), lame);
+    e += mesh.rest_area[t] * M::energy_density(triangle_deformation_gradient(mesh, x, t),
+                                               triangle_lame ? triangle_lame[t] : lame);
   return e;
 }
 
@@ -57,7 +63,7 @@ void add_elastic_derivatives_range(const Mesh& mesh, const Elasticity& e, const 
     const auto& tri = mesh.triangles[t];
     TriangleElasticity<M>::gradient_hessian(triangle_deformation_gradient(mesh, x, t),
                                             mesh.rest_shape_inverse[t], scale * mesh.rest_area[t],
-                                            e.lame, e.projection, gt, ht);
+                                            e.lame_of(t), e.projection, gt, ht);
     for (int a = 0; a < 3; ++a) {
       g[2 * tri[a]] += gt[2 * a];
       g[2 * tri[a] + 1] += gt[2 * a + 1];
@@ -68,11 +74,13 @@ void add_elastic_derivatives_range(const Mesh& mesh, const Elasticity& e, const 
   }
 }
 
-// The whole mesh, serially (explicit integration, energy bookkeeping, tests).
-double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x);
+// The whole mesh, serially (explicit integration, energy bookkeeping, tests);
+// triangle_lame as Elasticity's (empty: `lame` everywhere).
+double elastic_energy(const Mesh& mesh, Model model, const Lame& lame, const VecX& x,
+                      std::span<const Lame> triangle_lame = {});
 // Adds scale * the elastic gradient to `gradient` (2N entries); no Hessian.
 void add_elastic_gradient(const Mesh& mesh, Model model, const Lame& lame, const VecX& x,
-                          double scale, VecX& gradient);
+                          double scale, VecX& gradient, std::span<const Lame> triangle_lame = {});
 
 // The inversion-free filter: the largest alpha in (0, 1] that keeps every triangle's
 // signed area above kMinAreaFraction of its current value along direction p (the

@@ -119,7 +119,7 @@ double ip_energy(const StepProblem& p, const VecX& z) {
     auto block = [&](int task) {
       if (task < tri.blocks) {
         partial[task] = elastic_energy_range<M>(*p.mesh, p.elasticity.lame, zp, tri.begin(task),
-                                                tri.end(task, nt));
+                                                tri.end(task, nt), p.elasticity.triangle_lame);
       } else {
         const int b = task - tri.blocks;
         partial[task] = node_energy_range(p, zp, nodes.begin(b), nodes.end(b, n));

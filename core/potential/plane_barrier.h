@@ -17,22 +17,34 @@
 
 namespace invfree {
 
+// The barrier of node i: `b`, with the node's own contact area when the bodies of a scene
+// differ in edge length (node_area, per node; nullptr: b.area for every node).
+inline BarrierParams node_barrier(const BarrierParams& b, const double* node_area, int i) {
+  if (!node_area) return b;
+  BarrierParams own = b;
+  own.area = node_area[i];
+  return own;
+}
+
 struct GroundBarrier {
   bool on = false;
   double y0 = 0.0;
   BarrierParams barrier;
   bool sloped = false;
-  Vec2 normal = Vec2(0.0, 1.0);  // unit; read only when sloped
+  Vec2 normal = Vec2(0.0, 1.0);       // unit; read only when sloped
+  const double* node_area = nullptr;  // see node_barrier
 
   double gap(double x, double y) const {
     return sloped ? normal.x() * x + normal.y() * (y - y0) : y - y0;
   }
-  double value(const NodeState& s) const { return barrier_value(gap(s.x, s.y), barrier); }
+  BarrierParams at(int i) const { return node_barrier(barrier, node_area, i); }
+  double value(const NodeState& s) const { return barrier_value(gap(s.x, s.y), at(s.index)); }
   void add_derivatives(const NodeState& s, double scale, NodeDerivatives& d) const {
     const double g = gap(s.x, s.y);
     if (g >= barrier.dhat) return;
-    const double d1 = scale * barrier_derivative(g, barrier);
-    const double d2 = scale * barrier_second_derivative(g, barrier);
+    const BarrierParams b = at(s.index);
+    const double d1 = scale * barrier_derivative(g, b);
+    const double d2 = scale * barrier_second_derivative(g, b);
     if (!sloped) {
       d.gy += d1;
       d.hyy += d2;
@@ -46,13 +58,16 @@ struct GroundBarrier {
 struct CeilingBarrier {
   bool on = false;
   BarrierParams barrier;
+  const double* node_area = nullptr;  // see node_barrier
 
-  double value(const NodeState& s) const { return barrier_value(s.ceiling - s.y, barrier); }
+  BarrierParams at(int i) const { return node_barrier(barrier, node_area, i); }
+  double value(const NodeState& s) const { return barrier_value(s.ceiling - s.y, at(s.index)); }
   void add_derivatives(const NodeState& s, double scale, NodeDerivatives& d) const {
     const double gap = s.ceiling - s.y;
     if (gap < barrier.dhat) {
-      const double d1 = scale * barrier_derivative(gap, barrier);
-      const double d2 = scale * barrier_second_derivative(gap, barrier);
+      const BarrierParams b = at(s.index);
+      const double d1 = scale * barrier_derivative(gap, b);
+      const double d2 = scale * barrier_second_derivative(gap, b);
       d.gy -= d1;
       d.gc += d1;
       d.hyy += d2;
@@ -86,11 +101,12 @@ inline double plane_step(const GroundBarrier& ground, const CeilingBarrier& ceil
 
 // The body's push on a ceiling at height ceiling_y (N, >= 0): the sum of the barrier's
 // forces -b'(d) over the nodes closer than dhat below it. x: 2 per node (x, y).
-inline double ceiling_push(const double* x, int nodes, double ceiling_y, const BarrierParams& b) {
+inline double ceiling_push(const double* x, int nodes, double ceiling_y, const BarrierParams& b,
+                           const double* node_area = nullptr) {
   double push = 0.0;
   for (int i = 0; i < nodes; ++i) {
     const double d = ceiling_y - x[2 * i + 1];
-    if (d > 0.0 && d < b.dhat) push -= barrier_derivative(d, b);
+    if (d > 0.0 && d < b.dhat) push -= barrier_derivative(d, node_barrier(b, node_area, i));
   }
   return push;
 }

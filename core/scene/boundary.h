@@ -44,13 +44,7 @@ struct PointEdgePair {
 // body_begin: the first node of each body, ascending, starting with 0 ({0}: one body).
 Boundary find_boundary(const Mesh& mesh, std::span<const int> body_begin);
 inline Boundary find_boundary(const Mesh& mesh) {
-  const int one_body[] = {0};
-  return find_boundary(mesh, one_body);
+  return find_boundary(mesh, mesh.body_begin);
 }
-
-// Appends `body` to `all` with every node moved by `offset` (the body's placement in the
-// scene; the rest shape is unchanged by a translation) and returns the index of its first
-// node, the value to list in body_begin.
-int append_body(Mesh& all, const Mesh& body, const Vec2& offset);
 
 }  // namespace invfree

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "scene/fixed_nodes.h"
+#include "scene/scene_mesh.h"
 
 namespace invfree {
 
@@ -30,15 +31,49 @@ VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
       x.segment<2>(2 * i) = x.segment<2>(2 * i).cwiseProduct(scene.initial_stretch);
   if (scene.jitter > 0.0) {
     std::uint64_t state = scene.seed;
-    const double amplitude = scene.jitter * scene.side / scene.n_seg;
-    for (int k = 0; k < x.size(); ++k) x[k] += amplitude * next_uniform(state);
+    for (int k = 0; k < x.size(); ++k) {
+      const PlacedBody b =
+          placed_body(scene, mesh.body_begin.size() == 1 ? 0 : body_of_node(mesh, k / 2));
+      const double amplitude = scene.jitter * b.side / b.n_seg;
+      x[k] += amplitude * next_uniform(state);
+    }
   }
   return x;
 }
 
+VecX initial_velocities(const SceneDef& scene, const Mesh& mesh) {
+  if (mesh.body_begin.size() == 1) return scene.initial_velocity.replicate(mesh.node_count(), 1);
+  VecX v(2 * mesh.node_count());
+  for (int i = 0; i < mesh.node_count(); ++i)
+    v.segment<2>(2 * i) = placed_body(scene, body_of_node(mesh, i)).velocity;
+  return v;
+}
+
+namespace {
+// With self-contact on, bodies must start apart: each pair's bounding boxes at t = 0 may
+// not touch (the squares are axis-aligned at rest, so this is their overlap test, made a
+// little stricter by jitter), since contact needs a positive distance from the start.
+std::optional<SceneProblem> overlapping_bodies(const SceneDef& s, const Mesh& mesh, const VecX& x) {
+  const int bodies = static_cast<int>(mesh.body_begin.size());
+  if (!s.has_self_contact || bodies < 2) return std::nullopt;
+  std::vector<Eigen::AlignedBox2d> box(bodies);
+  for (int i = 0; i < mesh.node_count(); ++i)
+    box[body_of_node(mesh, i)].extend(Vec2(x.segment<2>(2 * i)));
+  for (int a = 0; a < bodies; ++a)
+    for (int b = a + 1; b < bodies; ++b)
+      if (box[a].intersects(box[b]))
+        return SceneProblem{"body.offset",
+                            "[[body]] " + std::to_string(b + 1) + " touches or overlaps [[body]] " +
+                                std::to_string(a + 1) + " at t = 0 (self-contact needs them apart)",
+                            {"self_contact.enabled", "mesh.side", "mesh.n_seg"}};
+  return std::nullopt;
+}
+}  // namespace
+
 std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
-  const Mesh mesh = square_mesh(s.side, s.n_seg);
+  const Mesh mesh = scene_mesh(s);
   const VecX x = initial_positions(s, mesh);
+  if (auto problem = overlapping_bodies(s, mesh, x)) return problem;
   if (auto problem = fixed_rule_problem(s, mesh)) return problem;
   const bool needs_det_f_positive = s.has_triangle_elasticity() && !model_allows_inversion(s.model);
   for (const auto& tri : mesh.triangles) {
@@ -88,17 +123,30 @@ double estimated_memory_bytes(int n_seg) {
   return nodes * 1024.0 * (1.0 + 0.25 * std::log2(nodes));
 }
 
-std::string check_mesh_fits_in_memory(int n_seg) {
+namespace {
+std::string memory_verdict(const char* what, double needed) {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
   if (pages <= 0 || page_size <= 0) return "";  // unknown: let the allocator decide
   const double physical = double(pages) * double(page_size);
-  const double needed = estimated_memory_bytes(n_seg);
   if (needed <= 0.8 * physical) return "";
-  char buf[160];
+  char buf[200];
   std::snprintf(buf, sizeof buf,
-                "%d would need about %.1f GiB, more than this machine's %.1f GiB of memory allows",
-                n_seg, needed / double(1 << 30), physical / double(1 << 30));
+                "%s would need about %.1f GiB, more than this machine's %.1f GiB of memory allows",
+                what, needed / double(1 << 30), physical / double(1 << 30));
   return buf;
+}
+}  // namespace
+
+std::string check_mesh_fits_in_memory(int n_seg) {
+  return memory_verdict(std::to_string(n_seg).c_str(), estimated_memory_bytes(n_seg));
+}
+
+std::string check_mesh_fits_in_memory(const SceneDef& scene) {
+  if (scene.bodies.empty()) return check_mesh_fits_in_memory(scene.n_seg);
+  double needed = 0.0;
+  for (int b = 0; b < body_count(scene); ++b)
+    needed += estimated_memory_bytes(placed_body(scene, b).n_seg);
+  return memory_verdict("these bodies", needed);
 }
 
 }  // namespace invfree

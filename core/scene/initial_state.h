@@ -14,7 +14,10 @@
 
 namespace invfree {
 
+// mesh: scene_mesh(scene). Positions: rest, stretched, jittered by each body's edge
+// length; velocities: each body's.
 VecX initial_positions(const SceneDef& scene, const Mesh& mesh);
+VecX initial_velocities(const SceneDef& scene, const Mesh& mesh);
 std::optional<SceneProblem> check_initial_state(const SceneDef& scene);
 
 // Bytes a simulation of an n_seg mesh needs, an upper estimate: the measured peak of
@@ -24,5 +27,7 @@ std::optional<SceneProblem> check_initial_state(const SceneDef& scene);
 double estimated_memory_bytes(int n_seg);
 // "" or a reason (with both figures) when the estimate exceeds 80% of physical memory.
 std::string check_mesh_fits_in_memory(int n_seg);
+// The same for every body of a scene together.
+std::string check_mesh_fits_in_memory(const SceneDef& scene);
 
 }  // namespace invfree

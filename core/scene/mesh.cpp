@@ -55,4 +55,15 @@ std::vector<double> node_masses(const Mesh& mesh, double density, MassMode mode)
   return mass;
 }
 
+int append_body(Mesh& all, const Mesh& body, const Vec2& offset) {
+  const int first = all.node_count();
+  for (const Vec2& x : body.rest) all.rest.push_back(x + offset);
+  for (const auto& tri : body.triangles)
+    all.triangles.push_back({tri[0] + first, tri[1] + first, tri[2] + first});
+  all.rest_area.insert(all.rest_area.end(), body.rest_area.begin(), body.rest_area.end());
+  all.rest_shape_inverse.insert(all.rest_shape_inverse.end(), body.rest_shape_inverse.begin(),
+                                body.rest_shape_inverse.end());
+  return first;
+}
+
 }  // namespace invfree

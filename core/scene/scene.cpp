@@ -106,6 +106,36 @@ std::optional<FixedCorners> fixed_corners_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+int body_count(const SceneDef& s) {
+  return s.bodies.empty() ? 1 : static_cast<int>(s.bodies.size());
+}
+
+PlacedBody placed_body(const SceneDef& s, int body) {
+  PlacedBody b{s.side, s.n_seg, Vec2::Zero(), s.initial_velocity, s.lame};
+  if (s.bodies.empty()) return b;
+  const BodyDef& d = s.bodies[body];
+  b.side = d.side.value_or(s.side);
+  b.n_seg = d.n_seg.value_or(s.n_seg);
+  b.offset = d.offset;
+  b.velocity = d.velocity.value_or(s.initial_velocity);
+  b.lame = d.lame.value_or(s.lame);
+  return b;
+}
+
+double body_edge_length(const SceneDef& s, int body) {
+  const PlacedBody b = placed_body(s, body);
+  return b.side / b.n_seg;
+}
+
+void set_material_of_every_body(SceneDef& s, const Lame& lame) {
+  s.lame = lame;
+  for (BodyDef& b : s.bodies) b.lame.reset();
+}
+
+double SceneDef::contact_area() const {
+  return body_edge_length(*this, 0);
+}
+
 Vec2 ground_unit_normal(const SceneDef& s) {
   return s.ground_normal.normalized();
 }
@@ -153,12 +183,38 @@ const ValueBounds* find_value_bounds(std::string_view key) {
   return nullptr;
 }
 
+// Each [[body]]'s own values, under the key "body.<key>" and a reason that names the body
+// (1-based, as a reader counts the tables).
+static std::optional<SceneProblem> find_body_problem(const SceneDef& s) {
+  if (s.bodies.size() > static_cast<size_t>(kMaxBodies))
+    return SceneProblem{"body", "at most " + std::to_string(kMaxBodies) + " [[body]] tables", {}};
+  auto problem = [](size_t k, const char* key, const std::string& why) {
+    return SceneProblem{
+        std::string("body.") + key, why + " (in [[body]] " + std::to_string(k + 1) + ")", {}};
+  };
+  const ValueBounds& side = *find_value_bounds("mesh.side");
+  const ValueBounds& n_seg = *find_value_bounds("mesh.n_seg");
+  const ValueBounds& mu = *find_value_bounds("material.mu");
+  const ValueBounds& lambda = *find_value_bounds("material.lambda");
+  for (size_t k = 0; k < s.bodies.size(); ++k) {
+    const BodyDef& b = s.bodies[k];
+    if (b.side && !side.contains(*b.side)) return problem(k, "side", side.requirement());
+    if (b.n_seg && !n_seg.contains(*b.n_seg)) return problem(k, "n_seg", n_seg.requirement());
+    if (!b.offset.allFinite()) return problem(k, "offset", "must be finite");
+    if (b.velocity && !b.velocity->allFinite()) return problem(k, "velocity", "must be finite");
+    if (b.lame && !mu.contains(b.lame->mu)) return problem(k, "mu", mu.requirement());
+    if (b.lame && !lambda.contains(b.lame->lambda))
+      return problem(k, "lambda", lambda.requirement());
+  }
+  return std::nullopt;
+}
+
 std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
   for (const auto& v : kBounded)
     if (v.get && !v.bounds.contains(v.get(s)))
       return SceneProblem{v.key, v.bounds.requirement(), {}};
-  if (auto e = check_mesh_fits_in_memory(s.n_seg); !e.empty())
-    return SceneProblem{"mesh.n_seg", e, {}};
+  if (auto problem = find_body_problem(s)) return problem;
+  if (auto e = check_mesh_fits_in_memory(s); !e.empty()) return SceneProblem{"mesh.n_seg", e, {}};
   if (!s.initial_velocity.allFinite())
     return SceneProblem{"initial.velocity", "must be finite", {}};
   if (!s.gravity.allFinite()) return SceneProblem{"gravity.g", "must be finite", {}};
@@ -174,9 +230,10 @@ std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
   // Self-contact rebuilds the Hessian's pattern when a contact needs new blocks; the
   // springs' and the fixed nodes' precomputed slots into it would then be stale.
   if (s.has_self_contact && s.has_mass_spring)
-    return SceneProblem{"self_contact.enabled",
-                        "is not available with [mass_spring] (springs need a fixed Hessian pattern)",
-                        {"mass_spring.enabled"}};
+    return SceneProblem{
+        "self_contact.enabled",
+        "is not available with [mass_spring] (springs need a fixed Hessian pattern)",
+        {"mass_spring.enabled"}};
   if (s.has_self_contact && s.has_fixed)
     return SceneProblem{"self_contact.enabled",
                         "is not available with [fixed] (fixed nodes need a fixed Hessian pattern)",

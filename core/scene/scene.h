@@ -38,6 +38,27 @@ enum class FixedCorners : unsigned {
 const char* fixed_corners_name(FixedCorners c);
 std::optional<FixedCorners> fixed_corners_from_name(std::string_view name);
 
+// [[body]]: one square of a scene with several bodies. An unset value takes the scene's:
+// [mesh] side and n_seg, [initial] velocity, [material]. The body's centre sits at
+// `offset` at rest (the scene's single square is centred at the origin).
+struct BodyDef {
+  std::optional<double> side;
+  std::optional<int> n_seg;
+  Vec2 offset = Vec2::Zero();
+  std::optional<Vec2> velocity;
+  std::optional<Lame> lame;
+  bool operator==(const BodyDef&) const = default;
+};
+
+// A body with every default filled in from its scene.
+struct PlacedBody {
+  double side = 1.0;
+  int n_seg = 4;
+  Vec2 offset = Vec2::Zero();
+  Vec2 velocity = Vec2::Zero();
+  Lame lame;
+};
+
 struct SceneDef {
   std::string name = "compress";
   // [mesh]
@@ -100,13 +121,26 @@ struct SceneDef {
   bool has_self_contact = false;
   double self_friction = 0.0;    // point-edge friction coefficient (potential/self_friction.h)
   bool self_contact_ccd = true;  // false: the line search's CCD filter is off (a study row)
+  // [[body]]: the scene's bodies, in node order. Empty: one body, the [mesh] square at the
+  // origin (every scene file without [[body]] tables).
+  std::vector<BodyDef> bodies;
 
   bool operator==(const SceneDef&) const = default;
-  double contact_area() const { return side / n_seg; }
+  // The plane barriers' contact area per node, the first body's side / n_seg (every body's
+  // when they share it; otherwise scene_node_contact_areas gives each node its body's).
+  double contact_area() const;
   bool has_contact() const { return has_ground || has_ceiling; }
   // The triangles' elasticity (material.*) is a term of this scene's potential.
   bool has_triangle_elasticity() const { return !has_mass_spring; }
 };
+
+int body_count(const SceneDef& s);  // 1 without [[body]] tables
+PlacedBody placed_body(const SceneDef& s, int body);
+double body_edge_length(const SceneDef& s, int body);  // side / n_seg
+// One material for every body (the live sliders): the scene's, and no body's own.
+void set_material_of_every_body(SceneDef& s, const Lame& lame);
+// The largest number of [[body]] tables a scene may list.
+constexpr int kMaxBodies = 64;
 
 // The ground's unit normal, and a point's signed distance to the ground plane through
 // (0, ground_y); exactly y - ground_y for the horizontal ground.

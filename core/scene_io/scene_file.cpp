@@ -12,6 +12,7 @@
 #include <map>
 #include <vector>
 
+#include "scene_io/body_tables.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/did_you_mean.h"
 #include "scene_io/error_text.h"
@@ -123,9 +124,15 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   }
   std::map<std::string, int> lines;  // "section.key" the user wrote -> its line
   MaterialInput material;
+  std::vector<scene_io::BodyInput> bodies;
   for (auto&& [key, node] : root) {
     const std::string k(key.str());
     const int line = static_cast<int>(node.source().begin.line);
+    if (k == "body") {
+      if (auto r = scene_io::read_body_tables(node, bodies); !r.message.empty())
+        return fail(r.line, r.message);
+      continue;
+    }
     if (k == "name") {
       if (!node.is_string())
         return fail(line, "name: expected a string, got " + scene_io::toml_type_name(node));
@@ -168,6 +175,11 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   };
   if (auto r = scene_io::apply_material(s, material); !r.empty())
     return fail(line_of(r.substr(0, r.find(':'))), r);
+  for (const auto& body : bodies)  // a problem with a body blames its key's last table
+    for (const auto& [key, line] : body.key_lines) lines["body." + key] = line;
+  int body_line = 0;
+  if (auto r = scene_io::apply_body_materials(s, bodies, &body_line); !r.empty())
+    return fail(body_line, r);
   if (const auto problem = find_scene_problem(s)) {
     const Blame b = blame(*problem, [&](const std::string& key) { return lines.count(key) > 0; });
     return fail(line_of(b.key), b.message);
@@ -270,7 +282,7 @@ std::string scene_to_toml(const SceneDef& s) {
       if (k.kept && std::string_view(k.section) == section.name)
         out += std::string(k.key) + " = " + k.write(s) + "\n";
   }
-  return out;
+  return out + scene_io::body_tables_to_toml(s);
 }
 
 }  // namespace invfree

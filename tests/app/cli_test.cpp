@@ -35,7 +35,8 @@ TEST(Cli, SimulateWritesCsvAndObj) {
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line,
-            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms");
+            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,"
+            "ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, 5);
@@ -158,7 +159,8 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --scene", "--scene"},
       {"simulate --scene ''",
        ": no such file, and not a built-in scene (compress, course-1-mass-spring, "
-       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop)"},
+       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, "
+       "stack, stack-friction)"},
       {"simulate --scene comprss", "comprss: no such file, and not a built-in scene"},
       {"simulate --scene " + dir + "/subdir", dir + "/subdir: is a directory, not a scene file"},
       {"simulate --scene " + dir + "/binary.toml", dir + "/binary.toml: not a text file"},
@@ -235,7 +237,8 @@ TEST(Cli, StepFailureNamesTheStepAndKeepsCompleteOutput) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/obj/0.obj"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/obj/1.obj"));
   EXPECT_EQ(slurp(dir + "/run.csv"),
-            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n");
+            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,"
+            "ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n");
   std::filesystem::remove_all(dir);
 }
 

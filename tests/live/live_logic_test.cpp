@@ -12,6 +12,7 @@
 #include <fstream>
 #include <set>
 
+#include "app/live/course.h"
 #include "app/live/key_bindings.h"
 #include "app/live/live_controller.h"
 #include "app/live/log_slider.h"
@@ -402,6 +403,22 @@ TEST(LiveController, StatsFollowTheState) {
   const Vec2 p = lc.simulation().x.segment<2>(2 * 7);
   EXPECT_EQ(lc.nearest_node(p + Vec2(0.01, 0.0), 0.05), 7);
   EXPECT_EQ(lc.nearest_node(Vec2(5.0, 5.0), 0.05), -1);
+}
+
+// The picker lists the course first, chapter 1 to 8 in order (every chapter a built-in
+// scene), then the other built-in scenes; each chapter but the lecture's own has an idea.
+TEST(Course, ThePickerListsTheEightChaptersInOrderThenTheRest) {
+  std::vector<std::string> names;
+  for (const auto& e : builtin_scenes()) names.emplace_back(e.name);
+  put_course_first(names);
+  ASSERT_GE(names.size(), std::size(kCourse));
+  for (size_t k = 0; k < std::size(kCourse); ++k) {
+    EXPECT_EQ(names[k], kCourse[k].scene) << "position " << k;
+    EXPECT_EQ(kCourse[k].chapter, static_cast<int>(k) + 1);
+    EXPECT_EQ(kCourse[k].idea == nullptr, std::string(kCourse[k].scene) == "compress");
+  }
+  for (size_t k = std::size(kCourse); k < names.size(); ++k)
+    EXPECT_EQ(course_chapter(names[k]), nullptr) << names[k];
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
   EXPECT_EQ(files, embedded.size());
   EXPECT_EQ(builtin_scene_names(),
             "compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-            "course-4-friction, course-5-moving-dirichlet, drop");
+            "course-4-friction, course-5-moving-dirichlet, drop, stack, stack-friction");
 }
 
 // SceneDef's defaults are the reference demo (scene/scene.h): `compress` is the struct as
@@ -68,7 +68,8 @@ TEST(BuiltinScenes, CompressIsTheDefaultSceneAndDropItsVariant) {
   EXPECT_EQ(
       load_builtin_scene("stress-h0.1").error,
       "stress-h0.1: not a built-in scene (compress, course-1-mass-spring, course-2-dirichlet, "
-      "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop)");
+      "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, stack, "
+      "stack-friction)");
 }
 
 TEST(SceneFiles, SerialisationRoundTrips) {
@@ -177,7 +178,7 @@ TEST(SceneFiles, MissingFileAndUnknownName) {
   EXPECT_EQ(load.error,
             "/nonexistent/scene.toml: no such file, and not a built-in scene (compress, "
             "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
-            "course-5-moving-dirichlet, drop)");
+            "course-5-moving-dirichlet, drop, stack, stack-friction)");
 }
 
 TEST(Overrides, ApplyAndValidate) {
@@ -667,7 +668,7 @@ TEST(BadInput, FilesThatAreNotScenes) {
              dir +
                  "/missing.toml: no such file, and not a built-in scene (compress, "
                  "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
-                 "course-5-moving-dirichlet, drop)");
+                 "course-5-moving-dirichlet, drop, stack, stack-friction)");
   expect_bad(dir + "/missing/deeper.toml", "no such file");
   expect_bad(dir, dir + ": is a directory, not a scene file");
   expect_bad(dir + "/binary.toml", dir + "/binary.toml: not a text file");
@@ -679,7 +680,7 @@ TEST(BadInput, FilesThatAreNotScenes) {
   expect_bad("comprss",
              "comprss: no such file, and not a built-in scene (did you mean \"compress\"?) "
              "(compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-             "course-4-friction, course-5-moving-dirichlet, drop)");
+             "course-4-friction, course-5-moving-dirichlet, drop, stack, stack-friction)");
   expect_bad(dir + "/empty.toml/x", "no such file");  // a file used as a directory
   // Unreadable: /proc/self/mem is a regular file that fails every read at offset 0.
   expect_bad("/proc/self/mem", "/proc/self/mem: could not read the file");

@@ -1,12 +1,17 @@
-// The course scenes (assets/scenes/course-*.toml) against the public solid-sim-tutorial's
-// Python demos they come from. tests/data/course/<scene>.txt holds the demo's node
-// positions every 10 steps over 200 steps, run converged (tol 1e-6) with its own settings
-// (scripts/course_reference.py made them from the tutorial; tests/data/course/README.md
+// The course scenes (assets/scenes/course-*.toml, stack.toml, stack-friction.toml) against the
+// public solid-sim-tutorial's Python demos they come from. tests/data/course/<scene>.txt holds the
+// demo's node positions every 10 steps over 200 steps, run converged (tol 1e-6) with its own
+// settings (scripts/course_reference.py made them from the tutorial; tests/data/course/README.md
 // says how). Each scene, also converged (tol 1e-6), must follow its demo to 1e-4 m at
 // every sample, and also lets the picture move (a reference that stays still would match
-// anything that does nothing).
+// anything that does nothing). Samples stop where the ceiling does (stack, stack-friction:
+// after 194 of the 200 steps): the demo decides by the ceiling's actual height, invfree by
+// its nominal one, so the demo moves it once more (docs/method.md, "Where the ceiling
+// stops"), a deliberate difference of one 5 mm step.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -50,8 +55,16 @@ TEST_P(CourseScene, FollowsThePythonDemoToATenthOfAMillimetre) {
   scene.tol = 1e-6;  // converged, as the reference was run
   Simulation sim = make_simulation(scene);
   ASSERT_EQ(sim.x.size(), static_cast<long>(reference[0].x.size()));
+  // The last step whose start the ceiling's nominal height is still above its stop.
+  long last_step = reference.back().step;
+  if (scene.has_ceiling && scene.ceiling_velocity < 0.0)
+    last_step = std::min(
+        last_step,
+        static_cast<long>(std::ceil(
+            (scene.ceiling_y - scene.ceiling_stop) / (-scene.ceiling_velocity * scene.h) - 1e-9)));
   double worst = 0.0, moved = 0.0;
   for (const Sample& sample : reference) {
+    if (sample.step > last_step) break;
     while (sim.step_count < sample.step) {
       const StepReport r = step(sim);
       ASSERT_EQ(r.status, StepStatus::Ok)
@@ -73,7 +86,7 @@ TEST_P(CourseScene, FollowsThePythonDemoToATenthOfAMillimetre) {
 INSTANTIATE_TEST_SUITE_P(Course, CourseScene,
                          ::testing::Values("course-1-mass-spring", "course-2-dirichlet",
                                            "course-3-contact", "course-4-friction",
-                                           "course-5-moving-dirichlet"),
+                                           "course-5-moving-dirichlet", "stack", "stack-friction"),
                          [](const auto& info) {
                            std::string n = info.param;
                            for (char& c : n)
