@@ -4,6 +4,7 @@
 
 #include "scene_io/did_you_mean.h"
 #include "scene_io/error_text.h"
+#include "scene_io/scene_keys.h"
 
 namespace invfree::scene_io {
 
@@ -12,7 +13,7 @@ namespace {
 constexpr BodyKeyDoc kBodyKeys[] = {
     {"side", "number", "m", "edge length of this body's square (default: mesh.side)"},
     {"n_seg", "integer", "", "segments per side (default: mesh.n_seg)"},
-    {"offset", "[x, y]", "m", "the square's centre at rest (default [0, 0])"},
+    {"offset", "[x, y]", "m", "the square's centre at rest"},
     {"velocity", "[x, y]", "m/s", "its velocity at t = 0 (default: initial.velocity)"},
     {"E", "number", "Pa", "its own Young's modulus (default: [material])"},
     {"nu", "number", "", "its own Poisson's ratio"},
@@ -159,3 +160,23 @@ std::string body_tables_to_toml(const SceneDef& scene) {
 }
 
 }  // namespace invfree::scene_io
+
+namespace invfree {
+
+std::vector<SceneKeyInfo> body_key_info() {
+  std::vector<SceneKeyInfo> out;
+  for (const auto& k : scene_io::body_key_docs()) {
+    const std::string key = k.key;
+    SceneKeyInfo info{"body", k.key, k.type, k.unit, "", {}, key == "offset" ? "[0.0, 0.0]" : "",
+                      k.doc};
+    const std::string stands_for = key == "side" || key == "n_seg"        ? "mesh." + key
+                                   : key == "offset" || key == "velocity" ? ""
+                                                                          : "material." + key;
+    if (const ValueBounds* b = stands_for.empty() ? nullptr : find_value_bounds(stands_for))
+      info.range = b->range();
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
+}  // namespace invfree

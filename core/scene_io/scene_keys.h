@@ -28,5 +28,8 @@ struct SceneSectionInfo {
 std::vector<std::string> scene_keys();
 std::vector<SceneKeyInfo> scene_key_info();
 std::vector<SceneSectionInfo> scene_section_info();
+// The keys of a [[body]] table (scene_io/body_tables.h); section "body", range from the
+// [mesh] or [material] key they stand for, default "" (the scene's value).
+std::vector<SceneKeyInfo> body_key_info();
 
 }  // namespace invfree

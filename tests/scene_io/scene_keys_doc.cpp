@@ -57,6 +57,15 @@ std::string scene_keys_markdown() {
             cell(shown(k.default_value)) + " | " + cell(k.doc) + " |\n";
     }
   }
+  md +=
+      "\n### [[body]]: one table per body of a scene with several (docs/scenes.md); "
+      "none: one body, the [mesh] square at the origin\n\n";
+  md += "| key | type | unit | range or values | default | meaning |\n";
+  md += "|---|---|---|---|---|---|\n";
+  for (const auto& k : body_key_info())
+    md += "| `" + k.key + "` | " + k.type + " | " + k.unit + " | " + range_or_choices(k) + " | " +
+          (k.default_value.empty() ? "the scene's" : cell(shown(k.default_value))) + " | " +
+          cell(k.doc) + " |\n";
   return md + "\n" + kSceneKeysEnd + "\n";
 }
 
