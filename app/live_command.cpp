@@ -71,12 +71,12 @@ int run_live_command(const LiveCommandOptions& opt) {
   lo.height = h;
   if (int code = build_scenes(opt, &lo); code != exit_code::kOk) return code;
   // Outputs are checked before the window opens, by the rules `render` follows
-  // (docs/outputs.md): a file that cannot be written, a non-empty --record DIR without
-  // --force (exit 2), and so on.
+  // (docs/outputs.md): a file that cannot be written, an existing --screenshot FILE or a
+  // non-empty --record DIR without --force (exit 2), and so on.
   if (!lo.screenshot_file.empty()) {
     std::vector<std::string> inputs = opt.scene.input_files();
     inputs.insert(inputs.end(), opt.scene_files.begin(), opt.scene_files.end());
-    if (auto e = check_output_files({lo.screenshot_file}, inputs))
+    if (auto e = check_output_files({lo.screenshot_file}, inputs, lo.record_force))
       return fail(e.exit_code, e.message);
   }
   if (!lo.record_dir.empty()) {
@@ -128,8 +128,8 @@ void register_live_command(CLI::App& app, int& exit_code) {
       ->type_name("DIR")
       ->check(non_empty_path());
   cmd->add_flag("--force", opt.live.record_force,
-                "--record into a non-empty directory: this run's frames replace those of the same "
-                "number (as `invfree render --force`)");
+                "--screenshot over an existing file, --record into a non-empty directory: this "
+                "run's frames replace those of the same number (as `invfree render --force`)");
   cmd->add_option("--ui-scale", opt.live.ui_scale,
                   "size of the panel's text and of the det F panel, 0.75 to 3 (default: from the "
                   "screen: 1 at 1280x720, 1.5 at 1920x1080; keys + and -)")

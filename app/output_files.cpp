@@ -179,6 +179,7 @@ std::string standard_output_error() {
 OutputError check_output_file(const std::string& path, const std::vector<std::string>& inputs) {
   namespace fs = std::filesystem;
   if (path.empty()) return bad_input("output file: empty path");
+  if (path.back() == '/') return bad_input(path + ": names a directory; give a file name");
   if (path == "-")
     return bad_input(
         "-: an output file cannot be standard output (it carries the summary line); give a file "

@@ -2,7 +2,7 @@
 // chapters in order (course-1 ... course-5, the lecture's demo `compress`, then `stack` and
 // `stack-friction`), each with
 // its chapter's one-line idea. The live window's picker lists them first, in chapter order,
-// and its panel shows the selected chapter's idea (docs/scenes.md has the same table);
+// and its panel shows the selected chapter's idea (docs/scenes.md tables the same chapters);
 // `compress`, the lecture's own scene, keeps its panel as it was (no idea line).
 #pragma once
 

@@ -94,10 +94,13 @@ SliderEdit readable_slider(PanelState& ps, const char* label, const char* name, 
 
 // A log slider over a material parameter (LogSlider): dragged or typed, *value is the
 // value asked for.
+constexpr const char* kMassSpringLabel = "mass-spring";
+constexpr double kSpringStiffnessLo = 1e1, kSpringStiffnessHi = 1e8;  // N/m
+
 bool log_slider(PanelState& ps, const char* id, const char* label, const LogSlider& map,
-                double current, double* value) {
+                double current, double* value, const char* unit = "Pa") {
   float t = static_cast<float>(map.position(current));
-  const std::string text = std::string(label) + " = " + render::format_si(current, "Pa");
+  const std::string text = std::string(label) + " = " + render::format_si(current, unit);
   double typed = 0.0;
   switch (readable_slider(ps, id, id + 2, &t, text, current, &typed)) {
     case SliderEdit::Dragged:
@@ -192,14 +195,24 @@ void scene_section(LiveController& lc, PanelState& ps) {
 
   SceneDef next = lc.settings();
   const Model models[] = {Model::NeoHookean, Model::StableNeoHookean, Model::Arap, Model::Linear};
-  if (ImGui::BeginCombo("model", render::model_display_name(next.model))) {
+  // The course's chapters 1-5 model springs, not triangles: the picker says so and can
+  // switch either way (the mesh is rebuilt).
+  const char* shown =
+      next.has_mass_spring ? kMassSpringLabel : render::model_display_name(next.model);
+  if (ImGui::BeginCombo("model", shown)) {
     for (Model m : models) {
       std::string label = render::model_display_name(m);
       if (model_allows_inversion(m)) label += "  (allows det F <= 0)";
-      if (ImGui::Selectable(label.c_str(), m == next.model) && m != next.model) {
+      const bool current = !next.has_mass_spring && m == next.model;
+      if (ImGui::Selectable(label.c_str(), current) && !current) {
         next.model = m;
+        next.has_mass_spring = false;
         apply(lc, next);
       }
+    }
+    if (ImGui::Selectable(kMassSpringLabel, next.has_mass_spring) && !next.has_mass_spring) {
+      next.has_mass_spring = true;
+      apply(lc, next);
     }
     ImGui::EndCombo();
   }
@@ -208,6 +221,16 @@ void scene_section(LiveController& lc, PanelState& ps) {
 
 void material_section(LiveController& lc, PanelState& ps) {
   SceneDef next = lc.settings();
+  if (next.has_mass_spring) {  // the springs' k instead of the triangles' material
+    const LogSlider k_map{kSpringStiffnessLo, kSpringStiffnessHi};
+    double k = 0.0;
+    if (log_slider(ps, "##k", "k", k_map, next.spring_stiffness, &k, "N/m")) {
+      next.spring_stiffness = std::clamp(k, kSpringStiffnessLo, kSpringStiffnessHi);
+      if (next.spring_stiffness != k) lc.note = "k clamped to the slider's range";
+      apply(lc, next);
+    }
+    return;
+  }
   const LogSlider mu_map{kMuRange.lo, kMuRange.hi};
   const LogSlider lambda_map{kLambdaLogMin, kLambdaRange.hi, true};
   double v = 0.0;

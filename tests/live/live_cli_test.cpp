@@ -89,6 +89,18 @@ TEST(LiveCli, OutputPathsAreCheckedBeforeAnyWindow) {
   r = run_headless("live --force --record " + dir + "/full");
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_NE(r.err.find("xvfb-run"), std::string::npos) << r.err;
+  // An existing screenshot is replaced only with --force, as every output (docs/outputs.md).
+  r = run_headless("live --frames 3 --screenshot " + dir + "/a_file");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("exists; use --force"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  r = run_headless("live --frames 3 --force --screenshot " + dir + "/a_file");
+  EXPECT_EQ(r.code, 4) << r.err;  // accepted; then no display
+  // A path that names a directory (ends in '/') is no file name.
+  r = run_headless("live --frames 3 --screenshot " + dir + "/new_dir/");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("names a directory"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/new_dir")) << "nothing made for a refused path";
   // A directory that cannot be made (a file is in the way), for either output.
   for (const std::string& args : {"live --record " + dir + "/a_file/rec",
                                   "live --frames 3 --screenshot " + dir + "/a_file/x.png"}) {
