@@ -1,5 +1,6 @@
 #include "app/study/contact_sheet.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -25,12 +26,26 @@ void draw_frame(Canvas& cell, const Frame& f, double x0, double y0, double size)
   cell.translate(x0, y0);
   cell.clip(0, 0, size, size);
   cell.fill_rect(0, 0, size, size, kWhite);
-  const double span = 1.7 * f.side;
+  double span = 1.7 * f.side, cx = 0.0;
   const double ground = f.has_ground ? f.ground_y : -f.side;
   const double bottom = ground - 0.05 * f.side;
+  if (f.mesh.body_begin.size() > 1 && f.x.size() >= 2) {
+    // Several bodies go their own ways (the stack's top square slides off): frame them all,
+    // from the ground up, centred on them.
+    double x_lo = f.x[0], x_hi = f.x[0], y_hi = f.x[1];
+    for (Eigen::Index i = 0; i + 1 < f.x.size(); i += 2) {
+      x_lo = std::min(x_lo, f.x[i]);
+      x_hi = std::max(x_hi, f.x[i]);
+      y_hi = std::max(y_hi, f.x[i + 1]);
+    }
+    if (std::isfinite(x_lo) && std::isfinite(x_hi) && std::isfinite(y_hi)) {
+      span = std::max({span, 1.15 * (x_hi - x_lo), 1.15 * (y_hi - bottom)});
+      cx = 0.5 * (x_lo + x_hi);
+    }
+  }
   const double scale = size / span;
   auto px = [&](double x, double y) {
-    return Point2{(x + 0.5 * span) * scale, size - (y - bottom) * scale};
+    return Point2{(x - cx + 0.5 * span) * scale, size - (y - bottom) * scale};
   };
   if (f.has_ground) {
     const double gy = px(0.0, f.ground_y).y;

@@ -25,6 +25,7 @@ namespace {
 Frame capture(const Simulation& sim) {
   Frame f;
   f.mesh.triangles = sim.mesh.triangles;
+  f.mesh.body_begin = sim.mesh.body_begin;
   f.x = sim.x;
   f.det_f = triangle_det_f(sim);
   f.has_ground = sim.scene.has_ground;
