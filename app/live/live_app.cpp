@@ -798,6 +798,9 @@ const std::map<std::string, WidgetRect>& LiveApp::widget_rects() const {
 const std::vector<std::string>& LiveApp::messages() const {
   return impl_->messages;
 }
+LiveApp::View LiveApp::view() const {
+  return {impl_->panel.ui_scale, impl_->panel.det_f_panel, impl_->panel.color_range};
+}
 
 int run_live(const LiveOptions& options) {
   std::string error;

@@ -103,6 +103,13 @@ class LiveApp {
   const std::map<std::string, WidgetRect>& widget_rects() const;
   // Messages printed for the user (screenshot paths, recording start/stop), also kept here.
   const std::vector<std::string>& messages() const;
+  // The view's settings as the panel holds them (UI scale, det F panel, colour range).
+  struct View {
+    float ui_scale;
+    render::PanelMode det_f_panel;
+    render::ColorRangeMode color_range;
+  };
+  View view() const;
 
  private:
   LiveApp();

@@ -1,6 +1,7 @@
 #include "app/live/live_panel.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // TempInputIsActive: a slider being typed into
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +29,31 @@ void remember(PanelState& ps, const char* name) {
 
 // What a slider did this frame.
 enum class SliderEdit { None, Dragged, Typed };
+
+// Draws `text` inside the slider just drawn (the last item), in the half its handle (at t
+// in [0, 1]) is not in, and the slider's label after it: the caller drew the slider with
+// ImGui's text colour cleared, so the handle never hides the value.
+void draw_slider_value(const char* label, float t, const std::string& text) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const ImVec2 a = ImGui::GetItemRectMin();
+  const float w = ImGui::CalcItemWidth();
+  const ImVec2 b(a.x + w, ImGui::GetItemRectMax().y);
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  const float grab = std::max(style.GrabMinSize, 1.0f);
+  const float travel = w - 2.0f * style.FramePadding.x - grab;
+  const float grab_x0 = a.x + style.FramePadding.x + std::clamp(t, 0.0f, 1.0f) * travel;
+  const float left_room = grab_x0 - a.x, right_room = b.x - (grab_x0 + grab);
+  const float x =
+      right_room >= left_room ? b.x - style.FramePadding.x - size.x : a.x + style.FramePadding.x;
+  ImGui::GetWindowDrawList()->AddText(ImVec2(x, a.y + style.FramePadding.y),
+                                      ImGui::GetColorU32(ImGuiCol_Text), text.c_str());
+  const char* hidden = std::strstr(label, "##");
+  const char* end = hidden ? hidden : label + std::strlen(label);
+  if (end != label)
+    ImGui::GetWindowDrawList()->AddText(
+        ImVec2(b.x + style.ItemInnerSpacing.x, a.y + style.FramePadding.y),
+        ImGui::GetColorU32(ImGuiCol_Text), label, end);
+}
 
 // A slider of a position t in [0, 1] (the caller maps it to the value) that keeps its
 // value `text` readable: ImGui draws the frame and the handle only, and the text goes to
@@ -69,27 +95,24 @@ SliderEdit readable_slider(PanelState& ps, const char* label, const char* name, 
   const bool changed = ImGui::SliderFloat(label, t, 0.0f, 1.0f, "", ImGuiSliderFlags_NoInput);
   ImGui::PopStyleColor();
   remember(ps, name);
-  const ImGuiStyle& style = ImGui::GetStyle();
-  const ImVec2 a = ImGui::GetItemRectMin();
-  const float w = ImGui::CalcItemWidth();
-  const ImVec2 b(a.x + w, ImGui::GetItemRectMax().y);
-  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
-  const float grab = std::max(style.GrabMinSize, 1.0f);
-  const float travel = w - 2.0f * style.FramePadding.x - grab;
-  const float grab_x0 = a.x + style.FramePadding.x + std::clamp(*t, 0.0f, 1.0f) * travel;
-  const float left_room = grab_x0 - a.x, right_room = b.x - (grab_x0 + grab);
-  const float x =
-      right_room >= left_room ? b.x - style.FramePadding.x - size.x : a.x + style.FramePadding.x;
-  ImGui::GetWindowDrawList()->AddText(ImVec2(x, a.y + style.FramePadding.y),
-                                      ImGui::GetColorU32(ImGuiCol_Text), text.c_str());
-  // The label (ImGui's text colour was cleared for the whole widget).
-  const char* hidden = std::strstr(label, "##");
-  const char* end = hidden ? hidden : label + std::strlen(label);
-  if (end != label)
-    ImGui::GetWindowDrawList()->AddText(
-        ImVec2(b.x + style.ItemInnerSpacing.x, a.y + style.FramePadding.y),
-        ImGui::GetColorU32(ImGuiCol_Text), label, end);
+  draw_slider_value(label, *t, text);
   return changed ? SliderEdit::Dragged : SliderEdit::None;
+}
+
+// An ImGui slider drawn by `widget` whose value `text` goes where its handle is not (at
+// t in [0, 1]); Ctrl+click still types into it as ImGui does (ImGui's own text field is
+// shown while typing).
+template <class Widget>
+bool slider_with_readable_value(const char* label, float t, const std::string& text,
+                                Widget widget) {
+  const bool typing = ImGui::TempInputIsActive(ImGui::GetID(label));
+  if (!typing) ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(0, 0, 0, 0));
+  const bool changed = widget();
+  if (!typing) {
+    ImGui::PopStyleColor();
+    draw_slider_value(label, t, text);
+  }
+  return changed;
 }
 
 // A log slider over a material parameter (LogSlider): dragged or typed, *value is the
@@ -280,12 +303,18 @@ void solver_section(LiveController& lc, PanelState& ps) {
     apply(lc, next);
   if (clamped_slider(lc, ps, "Newton tol (m/s)", "tol", &next.tol, kTolRange, "m/s", "%.2g", true))
     apply(lc, next);
-  ImGui::SliderInt("steps / frame", &lc.steps_per_frame, 1, 10, "%d", ImGuiSliderFlags_AlwaysClamp);
+  slider_with_readable_value("steps / frame", (lc.steps_per_frame - 1) / 9.0f,
+                             std::to_string(lc.steps_per_frame), [&] {
+                               return ImGui::SliderInt("steps / frame", &lc.steps_per_frame, 1, 10,
+                                                       "%d", ImGuiSliderFlags_AlwaysClamp);
+                             });
 
   // n_seg rebuilds the mesh: applied when the slider is released, not at every pixel.
   int n = ps.n_seg_edit > 0 ? ps.n_seg_edit : next.n_seg;
   const int slider_max = std::max(ps.max_segments, kMinSegments + 1);
-  ImGui::SliderInt("n_seg (mesh)", &n, kMinSegments, slider_max, "%d");
+  slider_with_readable_value(
+      "n_seg (mesh)", float(n - kMinSegments) / float(slider_max - kMinSegments), std::to_string(n),
+      [&] { return ImGui::SliderInt("n_seg (mesh)", &n, kMinSegments, slider_max, "%d"); });
   remember(ps, "n_seg");
   if (ImGui::IsItemActive()) ps.n_seg_edit = n;
   if (ImGui::IsItemDeactivated()) {
@@ -476,7 +505,11 @@ void stats_section(const LiveController& lc, PanelState& ps) {
 void view_section(PanelState& ps) {
   // Applied when released (fonts are rebuilt), in steps of 0.25.
   float scale = ps.ui_scale_edit > 0.0f ? ps.ui_scale_edit : ps.ui_scale;
-  ImGui::SliderFloat("UI scale", &scale, kMinUiScale, kMaxUiScale, "%.2f");
+  char shown[16];
+  std::snprintf(shown, sizeof shown, "%.2f", scale);
+  slider_with_readable_value(
+      "UI scale", (scale - kMinUiScale) / (kMaxUiScale - kMinUiScale), shown,
+      [&] { return ImGui::SliderFloat("UI scale", &scale, kMinUiScale, kMaxUiScale, "%.2f"); });
   remember(ps, "ui_scale");
   if (ImGui::IsItemActive()) ps.ui_scale_edit = scale;
   if (ImGui::IsItemDeactivated()) {

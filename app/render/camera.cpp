@@ -9,7 +9,10 @@ FrameLayout frame_layout(int width, int height, PanelMode panel, double text_sca
   FrameLayout l;
   l.width = width;
   l.height = height;
-  l.scale = std::min(width / 1280.0, height / 720.0) * text_scale;
+  // The det F panel is laid out for 720 px of height: it grows with the text scale only
+  // while it still fits the frame's height (a larger UI scale then enlarges the ImGui
+  // panel alone), so its bar and labels never crowd.
+  l.scale = std::min(std::min(width / 1280.0, height / 720.0) * text_scale, height / 720.0);
   const double panel_w =
       panel != PanelMode::Hidden ? std::round(std::min(290.0 * l.scale, 0.45 * width)) : 0.0;
   l.overlay = panel == PanelMode::Overlay;

@@ -13,6 +13,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <tuple>
 
 #include "app/live/live_app.h"
 #include "scene_io/builtin_scenes.h"
@@ -166,6 +167,19 @@ TEST(LiveWindow, KeysToggleThePanelAndPlayback) {
 namespace invfree::live {
 namespace {
 
+// Without --ui-scale the scale follows the window: 1 at 1280x720, 1.5 at 1920x1080.
+TEST(LiveWindow, DefaultUiScaleFollowsTheWindowSize) {
+  for (const auto& [w, h, scale] : {std::tuple{1280, 720, 1.0f}, std::tuple{1920, 1080, 1.5f}}) {
+    LiveOptions o;
+    o.width = w;
+    o.height = h;
+    auto app = open_app(o);
+    ASSERT_TRUE(app);
+    app->frame();
+    EXPECT_FLOAT_EQ(app->view().ui_scale, scale) << w << "x" << h;
+  }
+}
+
 TEST(LiveWindow, KeyboardShortcutsAct) {
   LiveOptions o;
   o.screenshot_dir = temp_dir();
@@ -205,6 +219,26 @@ TEST(LiveWindow, KeyboardShortcutsAct) {
   EXPECT_EQ(app->messages().back(), "screenshot: " + shot);
   test::RgbImage img;
   EXPECT_TRUE(test::load_png(shot, &img));
+  // The view's keys: + and - step the UI scale by 0.25 (within its range), D cycles the det
+  // F panel beside / over / hidden, C the colour range fixed / run / frame.
+  const LiveApp::View v0 = app->view();
+  press(GLFW_KEY_EQUAL);
+  EXPECT_FLOAT_EQ(app->view().ui_scale, std::min(kMaxUiScale, v0.ui_scale + 0.25f));
+  press(GLFW_KEY_MINUS);
+  press(GLFW_KEY_MINUS);
+  EXPECT_FLOAT_EQ(app->view().ui_scale, std::max(kMinUiScale, v0.ui_scale - 0.25f));
+  EXPECT_EQ(v0.det_f_panel, render::PanelMode::Side);
+  for (render::PanelMode m :
+       {render::PanelMode::Overlay, render::PanelMode::Hidden, render::PanelMode::Side}) {
+    press(GLFW_KEY_D);
+    EXPECT_EQ(app->view().det_f_panel, m);
+  }
+  EXPECT_EQ(v0.color_range, render::ColorRangeMode::Fixed);
+  for (render::ColorRangeMode m : {render::ColorRangeMode::Run, render::ColorRangeMode::Frame,
+                                   render::ColorRangeMode::Fixed}) {
+    press(GLFW_KEY_C);
+    EXPECT_EQ(app->view().color_range, m);
+  }
   press(GLFW_KEY_P);  // plain P: nothing
   EXPECT_FALSE(std::filesystem::exists(o.screenshot_dir + "/invfree_0002.png"));
   EXPECT_FALSE(app->should_close());
