@@ -18,11 +18,18 @@ void add_sweep_options(CLI::App* cmd, SweepCommandOptions& opt, const std::strin
 }
 
 CLI::Option* add_chart_format_option(CLI::App* cmd, ChartFormat& format) {
-  static const std::map<std::string, ChartFormat> formats = {
-      {"png", ChartFormat::Png}, {"svg", ChartFormat::Svg}, {"pdf", ChartFormat::Pdf}};
-  return cmd->add_option("--format", format, "file format of the charts: png, svg or pdf")
-      ->type_name("FORMAT")
-      ->transform(CLI::CheckedTransformer(formats))
+  // A word only (a map-transformer would also take the enum's numbers and print them).
+  return cmd
+      ->add_option_function<std::string>(
+          "--format",
+          [&format](const std::string& word) {
+            format = word == "svg"   ? ChartFormat::Svg
+                     : word == "pdf" ? ChartFormat::Pdf
+                                     : ChartFormat::Png;
+          },
+          "file format of the charts: png, svg or pdf")
+      ->type_name("png|svg|pdf")
+      ->check(CLI::IsMember({"png", "svg", "pdf"}))
       ->default_str("png");
 }
 

@@ -13,6 +13,7 @@
 #include "app/live/key_bindings.h"
 #include "app/live/log_slider.h"
 #include "app/live/param_limits.h"
+#include "app/live/plot_range.h"
 #include "app/render/frame_text.h"
 
 namespace invfree::live {
@@ -379,17 +380,7 @@ void y_range_labels(const char* top, const char* bottom, float width, float h) {
 void labelled_plot(PanelState& ps, const char* name, const char* title,
                    const std::vector<float>& values, float min_span, const char* format) {
   ImGui::TextUnformatted(title);
-  float lo = 0.0f, hi = 0.0f;
-  if (!values.empty()) {
-    const auto [a, b] = std::minmax_element(values.begin(), values.end());
-    lo = *a;
-    hi = *b;
-  }
-  if (hi - lo < min_span) {
-    const float mid = 0.5f * (lo + hi);
-    lo = mid - 0.5f * min_span;
-    hi = mid + 0.5f * min_span;
-  }
+  const auto [lo, hi] = plot_y_range(values, min_span);
   char top[32], bottom[32];
   std::snprintf(top, sizeof top, format, hi);
   std::snprintf(bottom, sizeof bottom, format, lo);

@@ -22,7 +22,6 @@ CommandResult run(const std::string& args) {
   return test::run_command(INVFREE_EXE, args, false);
 }
 
-
 TEST(CliRules, MixingYoungAndLameOnTheCommandLineExitsTwoInEitherOrder) {
   for (const char* args : {"--set material.E=1e4 --set material.mu=1000",
                            "--set material.mu=1000 --set material.E=1e4",
@@ -68,6 +67,10 @@ TEST(CliRules, NoCommandReplacesAnExistingFileWithoutForce) {
   const CommandResult b = run("bench --sizes 4 --steps 2 --format svg --force --out " + dir);
   EXPECT_EQ(b.code, 0) << b.err;
   EXPECT_NE(slurp(dir + "/bench.svg").find("<svg"), std::string::npos);
+  // --format takes the three words only (not the enum's numbers).
+  const CommandResult n = run("bench --sizes 4 --steps 2 --format 2 --force --out " + dir);
+  EXPECT_EQ(n.code, 2) << n.err;
+  EXPECT_TRUE(one_line(n.err)) << n.err;
   fs::remove_all(dir);
 }
 

@@ -18,6 +18,7 @@
 #include "app/live/log_slider.h"
 #include "app/live/output_naming.h"
 #include "app/live/param_limits.h"
+#include "app/live/plot_range.h"
 #include "app/live/view_transform.h"
 #include "material/triangle_elasticity.h"
 #include "scene_io/builtin_scenes.h"
@@ -419,6 +420,23 @@ TEST(Course, ThePickerListsTheEightChaptersInOrderThenTheRest) {
   }
   for (size_t k = std::size(kCourse); k < names.size(); ++k)
     EXPECT_EQ(course_chapter(names[k]), nullptr) << names[k];
+}
+
+// A plot's y range holds its data and spans at least the minimum the panel gives it, so a
+// change of 0.001 in min det F takes a tenth of the plot's height (labelled), not all of it.
+TEST(PlotRange, HoldsTheDataAndSpansAtLeastTheMinimum) {
+  const std::vector<float> flat = {0.998f, 0.9985f, 0.999f};
+  const PlotRange r = plot_y_range(flat, 0.01f);
+  EXPECT_NEAR(r.hi - r.lo, 0.01f, 1e-6f);
+  EXPECT_LE(r.lo, 0.998f);
+  EXPECT_GE(r.hi, 0.999f);
+  EXPECT_LT((0.999f - 0.998f) / (r.hi - r.lo), 0.11f);
+  const std::vector<float> wide = {-3.0f, 5.0f, 1.0f};
+  const PlotRange w = plot_y_range(wide, 0.01f);
+  EXPECT_EQ(w.lo, -3.0f);
+  EXPECT_EQ(w.hi, 5.0f);
+  const PlotRange none = plot_y_range({}, 1.0f);
+  EXPECT_EQ(none.hi - none.lo, 1.0f);
 }
 
 }  // namespace
