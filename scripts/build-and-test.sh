@@ -8,17 +8,24 @@
 #      on, -g1: line tables for the reports' stack traces, a third less compile time than -g),
 #      every test again except those labelled `heavy` (long runs of code the other tests
 #      already cover; tests/CMakeLists.txt says which, and they run in the release stage)
-#   4. (only when asked: stage "web") the web page: scripts/install-web-deps.sh, scripts/build-web.sh
-#      and its tests in headless Chromium (ctest -L web; docs/web.md). Not in the default
-#      stages: it adds about 7 minutes on 2 cores (5.5 to build the page, 2 to test it), which
-#      CI's 25 minutes do not hold; without it the web test reports itself skipped.
-# INVFREE_CI_STAGES picks stages (default "release,fuzz,sanitize"), e.g.
+#   4. where the web toolchain is installed (emcc, chromium and selenium, from
+#      scripts/install-web-deps.sh), the web page: scripts/install-web-deps.sh (fetches Dear
+#      ImGui's sources if missing), scripts/build-web.sh and its test in headless Chromium
+#      (ctest -L web; docs/web.md): about 6 minutes on 2 cores. Elsewhere the web test
+#      reports itself skipped, saying why.
+# INVFREE_CI_STAGES picks stages (default "release,fuzz,sanitize", and "web" where its
+# toolchain is installed), e.g.
 #   INVFREE_CI_STAGES=release bash scripts/build-and-test.sh    # the quick local check
 #   INVFREE_CI_STAGES=release,web bash scripts/build-and-test.sh  # + the page in a browser
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-stages=",${INVFREE_CI_STAGES:-release,fuzz,sanitize},"
+default_stages="release,fuzz,sanitize"
+if command -v emcc >/dev/null && command -v chromium >/dev/null &&
+   /usr/bin/python3 -c 'import selenium' 2>/dev/null; then
+  default_stages+=",web"
+fi
+stages=",${INVFREE_CI_STAGES:-$default_stages},"
 start=$SECONDS
 stage() { echo "=== $1 (at $((SECONDS - start)) s)"; }
 
