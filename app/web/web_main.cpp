@@ -229,13 +229,16 @@ void page_frame(void* arg) {
     });
   }
   follow_browser_window();
+  p.app->frame();
   // A tap on the picture plays or pauses; on the panel it is only the click it also was.
+  // Decided after the frame, once ImGui has seen where the touch went: a slow frame can
+  // bring the touch's move, press and release all at once, and ImGui's view from before
+  // them still has the pointer where the last touch left it (on the panel, say).
   if (p.tap && !ImGui::GetIO().WantCaptureMouse) {
     invfree::live::LiveController& lc = p.app->controller();
     lc.set_playing(!lc.playing());
   }
   p.tap = false;
-  p.app->frame();
   download_screenshots(p);
   publish_state(p);
 }
