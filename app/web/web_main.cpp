@@ -32,13 +32,13 @@ namespace {
 
 using invfree::live::LiveApp;
 
-// The n_seg slider's maximum in the page (docs/web.md, "Speed"): the largest mesh whose
-// step, timed in the page in headless Chromium on the project's 2-core machine while it was
-// loaded (load average 5-5.7), stays under half of a 30 frames/s frame, leaving the other
-// half for the page's drawing calls: 13.2 to 15.4 ms at n_seg 48 in three runs, 16.1 to
-// 24.8 ms at 56; up to 48 the frame rate is that of n_seg 4, from 56 on the step lowers it
-// (tests/web/measure_fps.py). Larger meshes can still be asked for in the URL (?n_seg=N).
-constexpr int kWebMaxSegments = 48;
+// The n_seg slider's maximum in the page (docs/web.md, "Speed"): the largest mesh that
+// held about 30 frames/s in headless Chromium on the project's 2-core machine, nearly idle
+// (load 2.4-3, the browser's own): n_seg 4 35.9, 32 31-33, 36 30-31, 40 28-30 frames/s,
+// 48 26-29 (steps of 8 ms at 40, 12 ms at 48; the drawing sets the rest and varies by
+// +-20% between runs). Measured with tests/web/measure_fps.py 4 16 32 40 44 48. Larger
+// meshes can still be asked for in the URL (?n_seg=N).
+constexpr int kWebMaxSegments = 40;
 
 struct Page {
   std::unique_ptr<LiveApp> app;
