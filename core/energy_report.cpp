@@ -20,13 +20,8 @@ EnergyReport energy_report(const Simulation& sim) {
     e.elastic += mass_spring_energy(springs, sim.x.data());
   }
   const Gravity gravity{s.has_gravity, s.gravity};
-  const BarrierParams barrier{s.dhat, s.kappa, s.contact_area()};
-  const double* node_area = sim.node_contact_area.empty() ? nullptr : sim.node_contact_area.data();
-  GroundBarrier ground{s.has_ground, s.ground_y, barrier};
-  ground.sloped = !(s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0);
-  ground.normal = ground_unit_normal(s);
-  ground.node_area = node_area;
-  const CeilingBarrier ceiling{s.has_ceiling, barrier, node_area};
+  const GroundBarrier ground = ground_barrier_of(sim);
+  const CeilingBarrier ceiling = ceiling_barrier_of(sim);
   for (int i = 0; i < sim.mesh.node_count(); ++i) {
     const NodeState node{i, sim.x[2 * i], sim.x[2 * i + 1], sim.node_mass[i], 0.0, sim.ceiling_y};
     e.kinetic += 0.5 * sim.node_mass[i] * sim.v.segment<2>(2 * i).squaredNorm();
@@ -35,7 +30,8 @@ EnergyReport energy_report(const Simulation& sim) {
     if (ceiling.on) e.contact += ceiling.value(node);
   }
   if (s.has_self_contact) {
-    const Boundary boundary = find_boundary(sim.mesh);
+    Boundary scratch;  // the live window calls this every frame: the step's boundary serves
+    const Boundary& boundary = boundary_now(sim, scratch);
     std::vector<PointEdgePair> pairs;
     BroadPhaseGrid grid;
     point_edge_candidates(boundary, sim.x, s.dhat, grid, pairs);

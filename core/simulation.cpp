@@ -74,10 +74,34 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
   return StepStatus::Ok;
 }
 
+}  // namespace
+
+GroundBarrier ground_barrier_of(const Simulation& sim) {
+  const SceneDef& s = sim.scene;
+  GroundBarrier g{s.has_ground, s.ground_y, barrier_params(s)};
+  g.sloped = ground_is_sloped(s);
+  g.normal = ground_unit_normal(s);
+  g.node_area = sim.node_contact_area.empty() ? nullptr : sim.node_contact_area.data();
+  return g;
+}
+
+CeilingBarrier ceiling_barrier_of(const Simulation& sim) {
+  return {sim.scene.has_ceiling, barrier_params(sim.scene),
+          sim.node_contact_area.empty() ? nullptr : sim.node_contact_area.data()};
+}
+
+const Boundary& boundary_now(const Simulation& sim, Boundary& scratch) {
+  if (sim.workspace && !sim.workspace->boundary.edges.empty()) return sim.workspace->boundary;
+  scratch = find_boundary(sim.mesh);
+  return scratch;
+}
+
+namespace {
+
 // The boundary of every body, found once per mesh (the first step that needs it).
 const Boundary& boundary_of(Simulation& sim) {
   StepWorkspace& ws = *sim.workspace;
-  if (ws.boundary.edges.empty()) ws.boundary = find_boundary(sim.mesh, sim.mesh.body_begin);
+  if (ws.boundary.edges.empty()) ws.boundary = find_boundary(sim.mesh);
   return ws.boundary;
 }
 
@@ -113,18 +137,11 @@ void fill_problem(Simulation& sim) {
   p.x_tilde = sim.x + s.h * sim.v;
   p.elasticity = {s.model, s.lame, s.projection, s.inversion_filter, s.has_triangle_elasticity()};
   p.elasticity.triangle_lame = sim.triangle_lame.empty() ? nullptr : sim.triangle_lame.data();
-  const double* node_area = sim.node_contact_area.empty() ? nullptr : sim.node_contact_area.data();
   p.springs.on = s.has_mass_spring;
   p.springs.stiffness = s.spring_stiffness;
   p.springs.project = s.projection != HessianProjection::None;
   p.gravity = {s.has_gravity, s.gravity};
-  const BarrierParams barrier = barrier_params(s);
-  p.ground.on = s.has_ground;
-  p.ground.y0 = s.ground_y;
-  p.ground.barrier = barrier;
-  p.ground.sloped = !(s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0);
-  p.ground.normal = ground_unit_normal(s);
-  p.ground.node_area = node_area;
+  p.ground = ground_barrier_of(sim);
   p.friction.on = s.has_ground && s.friction > 0.0;
   p.friction.sloped = p.ground.sloped;
   p.friction.tangent = Vec2(p.ground.normal.y(), -p.ground.normal.x());
@@ -135,9 +152,7 @@ void fill_problem(Simulation& sim) {
           s.friction, ground_gap(s, sim.x[2 * i], sim.x[2 * i + 1]), p.ground.at(i));
     p.friction.eps_u = kFrictionEpsV * s.h;
   }
-  p.ceiling.on = s.has_ceiling;
-  p.ceiling.barrier = barrier;
-  p.ceiling.node_area = node_area;
+  p.ceiling = ceiling_barrier_of(sim);
   if (p.ceiling.on) {
     p.ceiling_penalty.target = next_ceiling_nominal(s, sim.ceiling_nominal);
     // Warm start: the stiffness the last step needed (state), at least the demo's initial
@@ -400,10 +415,8 @@ double min_plane_gap(const Simulation& sim) {
 
 double min_self_gap(const Simulation& sim) {
   if (!sim.scene.has_self_contact || !sim.workspace) return INFINITY;
-  StepWorkspace& ws = *sim.workspace;
-  const Boundary& boundary = ws.boundary.edges.empty()
-                                 ? find_boundary(sim.mesh, sim.mesh.body_begin)
-                                 : ws.boundary;  // before any step
+  Boundary scratch;
+  const Boundary& boundary = boundary_now(sim, scratch);
   std::vector<PointEdgePair> pairs;
   BroadPhaseGrid grid;
   point_edge_candidates(boundary, sim.x, sim.scene.dhat, grid, pairs);

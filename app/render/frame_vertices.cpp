@@ -106,10 +106,6 @@ DetFSummary summarize_det_f(const FrameState& state) {
   return d;
 }
 
-bool ground_is_sloped(const SceneDef& s) {
-  return !(s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0);
-}
-
 // The sloped ground's surface line between pixel columns x0 and x1 (a ground steeper than
 // 85 degrees is drawn at 85).
 std::pair<Vec2, Vec2> ground_surface(const Camera& cam, const SceneDef& s, double x0, double x1) {

@@ -31,11 +31,14 @@ VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
       x.segment<2>(2 * i) = x.segment<2>(2 * i).cwiseProduct(scene.initial_stretch);
   if (scene.jitter > 0.0) {
     std::uint64_t state = scene.seed;
-    for (int k = 0; k < x.size(); ++k) {
-      const PlacedBody b =
-          placed_body(scene, mesh.body_begin.size() == 1 ? 0 : body_of_node(mesh, k / 2));
+    // Each body's own edge length; the draws in node order, x then y, as for one body.
+    for (size_t body = 0; body < mesh.body_begin.size(); ++body) {
+      const PlacedBody b = placed_body(scene, static_cast<int>(body));
       const double amplitude = scene.jitter * b.side / b.n_seg;
-      x[k] += amplitude * next_uniform(state);
+      const int end =
+          body + 1 < mesh.body_begin.size() ? mesh.body_begin[body + 1] : mesh.node_count();
+      for (int k = 2 * mesh.body_begin[body]; k < 2 * end; ++k)
+        x[k] += amplitude * next_uniform(state);
     }
   }
   return x;

@@ -140,8 +140,12 @@ Vec2 ground_unit_normal(const SceneDef& s) {
   return s.ground_normal.normalized();
 }
 
+bool ground_is_sloped(const SceneDef& s) {
+  return !(s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0);
+}
+
 double ground_gap(const SceneDef& s, double x, double y) {
-  if (s.ground_normal.x() == 0.0 && s.ground_normal.y() > 0.0) return y - s.ground_y;  // flat
+  if (!ground_is_sloped(s)) return y - s.ground_y;
   const Vec2 n = ground_unit_normal(s);
   return n.x() * x + n.y() * (y - s.ground_y);
 }

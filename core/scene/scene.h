@@ -145,6 +145,8 @@ constexpr int kMaxBodies = 64;
 // The ground's unit normal, and a point's signed distance to the ground plane through
 // (0, ground_y); exactly y - ground_y for the horizontal ground.
 Vec2 ground_unit_normal(const SceneDef& s);
+// False for the horizontal ground (normal (0, +y)), which keeps its own arithmetic.
+bool ground_is_sloped(const SceneDef& s);
 double ground_gap(const SceneDef& s, double x, double y);
 
 // The largest n_seg accepted anywhere: keeps every node, DOF and sparse-matrix index well

@@ -21,15 +21,10 @@ constexpr BodyKeyDoc kBodyKeys[] = {
     {"lambda", "number", "Pa", "its own Lame lambda, instead of E and nu"},
 };
 
-std::string number_in(const char* bounds_key, const toml::node& n, double& out) {
-  if (auto v = n.value<double>(); v && (n.is_integer() || n.is_floating_point())) {
-    out = *v;
-    if (!std::isfinite(out)) return "must be a finite number";
-  } else {
-    return "expected a number, got " + toml_type_name(n);
-  }
-  const ValueBounds* b = find_value_bounds(bounds_key);
-  return b && !b->contains(out) ? b->requirement() : "";
+// A number within the range of the [mesh] or [material] key it stands for.
+std::string number_in(const std::string& bounds_key, const toml::node& n, double& out) {
+  if (auto r = read_number(n, out); !r.empty()) return r;
+  return bounds_problem(bounds_key, out);
 }
 
 std::string vec2_in(const toml::node& n, Vec2& out) {
@@ -54,8 +49,7 @@ std::string read_body_key(const std::string& key, const toml::node& n, BodyInput
   } else if (key == "n_seg") {
     if (!n.is_integer()) return "expected an integer, got " + toml_type_name(n);
     const long long i = n.as_integer()->get();
-    if (!find_value_bounds("mesh.n_seg")->contains(static_cast<double>(i)))
-      return find_value_bounds("mesh.n_seg")->requirement();
+    if (auto r = bounds_problem("mesh.n_seg", static_cast<double>(i)); !r.empty()) return r;
     in.body.n_seg = static_cast<int>(i);
   } else if (key == "offset") {
     return vec2_in(n, in.body.offset);
@@ -64,7 +58,7 @@ std::string read_body_key(const std::string& key, const toml::node& n, BodyInput
     if (auto r = vec2_in(n, u); !r.empty()) return r;
     in.body.velocity = u;
   } else {  // E, nu, mu, lambda
-    if (auto r = number_in(("material." + key).c_str(), n, v); !r.empty()) return r;
+    if (auto r = number_in("material." + key, n, v); !r.empty()) return r;
     (key == "E"    ? in.material.E
      : key == "nu" ? in.material.nu
      : key == "mu" ? in.material.mu

@@ -32,10 +32,6 @@ std::string toml_type_name(const toml::node& n) {
   }
 }
 
-namespace {
-
-// ---- typed readers: return "" or a reason -------------------------------------------
-
 std::string read_number(const toml::node& n, double& out) {
   if (auto v = n.value<double>(); v && (n.is_integer() || n.is_floating_point())) {
     out = *v;
@@ -44,6 +40,15 @@ std::string read_number(const toml::node& n, double& out) {
   }
   return "expected a number, got " + toml_type_name(n);
 }
+
+std::string bounds_problem(std::string_view key, double v) {
+  const ValueBounds* b = find_value_bounds(key);
+  return b && !b->contains(v) ? b->requirement() : "";
+}
+
+namespace {
+
+// ---- typed readers: return "" or a reason -------------------------------------------
 
 std::string read_int(const toml::node& n, long long& out) {
   if (n.is_integer()) {
@@ -77,8 +82,7 @@ std::string read_vec2(const toml::node& n, Vec2& out) {
 
 // The range the core gives the key (scene_value_bounds); "" when v is within it.
 std::string check_bounds(const KeySpec& k, double v) {
-  const ValueBounds* b = find_value_bounds(k.name());
-  return b && !b->contains(v) ? b->requirement() : "";
+  return bounds_problem(k.name(), v);
 }
 
 // ---- readers and writers of each value type, bound to a SceneDef field ----------------

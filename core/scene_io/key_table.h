@@ -66,6 +66,10 @@ std::string apply_material(SceneDef& scene, const MaterialInput& in);
 
 // "a number", "a string", ...: what a value is, for errors.
 std::string toml_type_name(const toml::node& value);
+// A finite number (integer or float) into out; "" or the reason.
+std::string read_number(const toml::node& value, double& out);
+// "" when v is within the core's range for `key` ("mesh.side"), else the requirement.
+std::string bounds_problem(std::string_view key, double v);
 
 // A double as TOML text that reads back to the same double (shortest round trip, always
 // with a '.' or an exponent so that TOML reads a float).

@@ -25,4 +25,11 @@ struct StepWorkspace {
   std::vector<std::array<int, 2>> edge_pairs;  // scratch of the intersection check
 };
 
+struct Simulation;
+// The planes' barriers of a simulation's scene, as the step and the energy report use them.
+GroundBarrier ground_barrier_of(const Simulation& sim);
+CeilingBarrier ceiling_barrier_of(const Simulation& sim);
+// The bodies' boundary: the workspace's once a step has found it, else found into scratch.
+const Boundary& boundary_now(const Simulation& sim, Boundary& scratch);
+
 }  // namespace invfree
