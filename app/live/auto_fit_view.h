@@ -29,8 +29,8 @@ class AutoFitView {
 
  private:
   ViewTransform view_;
-  bool auto_fit_ = true;  // refit on layout changes
-  bool bodies_ = false;   // the last fit framed the bodies (F), not the whole stage
+  bool auto_fit_ = true;               // refit on layout changes
+  bool bodies_ = false;                // the last fit framed the bodies (F), not the whole stage
   int scene_index_ = -1, n_seg_ = -1;  // what the last fit showed
 };
 

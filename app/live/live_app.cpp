@@ -66,9 +66,9 @@ struct LiveAppImpl {
   std::vector<std::string> messages;
   long frames = 0;
   FrameRateMeter frame_rate;
-  float applied_ui_scale = 0.0f;  // the UI scale the fonts were built at
+  float applied_ui_scale = 0.0f;          // the UI scale the fonts were built at
   render::ColorRangeTracker color_range;  // the det F colour range over the run
-  int busy_frames = kBusyFrames;  // frames left to draw before idling
+  int busy_frames = kBusyFrames;          // frames left to draw before idling
 
   ~LiveAppImpl() {
     window.activate();
@@ -163,9 +163,9 @@ struct LiveAppImpl {
   // The screenshot asked for (Ctrl+P, the button), from `capture` when this frame has one.
   void save_requested_screenshot(const Image* capture) {
     screenshot_requested = false;
-    say(save_screenshot(options.screenshot_dir,
-                        capture ? *capture
-                                : read_window(window.gl(), renderer->width(), renderer->height())));
+    say(save_screenshot(
+        options.screenshot_dir,
+        capture ? *capture : read_window(window.gl(), renderer->width(), renderer->height())));
   }
 
   // Frames per second in the window title.

@@ -71,8 +71,8 @@ class LiveWindow {
   ImGuiContext* imgui_ = nullptr;
   bool imgui_glfw_ = false, imgui_gl_ = false;
   bool imgui_frame_begun_ = false;  // the OpenGL3 backend has uploaded the font texture
-  ImGuiStyle base_style_;            // the style at UI scale 1
-  ImVector<ImWchar> glyph_ranges_;   // the fonts' characters; the atlas reads them when built
+  ImGuiStyle base_style_;           // the style at UI scale 1
+  ImVector<ImWchar> glyph_ranges_;  // the fonts' characters; the atlas reads them when built
   bool input_seen_ = false;
 };
 

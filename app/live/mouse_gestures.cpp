@@ -11,8 +11,8 @@ constexpr double kGrabRadiusPixels = 14.0;
 
 }  // namespace
 
-void MouseGestures::handle(LiveController& lc, AutoFitView& view,
-                           const render::PixelRect& visible, double ps) {
+void MouseGestures::handle(LiveController& lc, AutoFitView& view, const render::PixelRect& visible,
+                           double ps) {
   const ImGuiIO& io = ImGui::GetIO();
   const Vec2 mouse(io.MousePos.x * ps, io.MousePos.y * ps);
   if (drag_ != Drag::None) {
@@ -44,9 +44,8 @@ void MouseGestures::handle(LiveController& lc, AutoFitView& view,
 void MouseGestures::continue_drag(LiveController& lc, AutoFitView& view,
                                   const render::PixelRect& visible, const Vec2& mouse, double ps) {
   const ImGuiIO& io = ImGui::GetIO();
-  const bool held = drag_ == Drag::Pull
-                        ? io.MouseDown[0]
-                        : (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
+  const bool held = drag_ == Drag::Pull ? io.MouseDown[0]
+                                        : (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
   if (!held || !ImGui::IsMousePosValid()) {
     if (drag_ == Drag::Pull) lc.end_pull();
     drag_ = Drag::None;
@@ -67,8 +66,7 @@ void MouseGestures::continue_drag(LiveController& lc, AutoFitView& view,
 void MouseGestures::note_pointer(const ImGuiIO& io) {
   if (!pointer_seen_) pointer_start_ = io.MousePos;
   pointer_seen_ = true;
-  if (io.MousePos.x != pointer_start_.x || io.MousePos.y != pointer_start_.y)
-    pointer_moved_ = true;
+  if (io.MousePos.x != pointer_start_.x || io.MousePos.y != pointer_start_.y) pointer_moved_ = true;
 }
 
 void MouseGestures::draw_markers(const LiveController& lc, const ViewTransform& view,

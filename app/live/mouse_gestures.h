@@ -19,8 +19,7 @@ class MouseGestures {
   // This frame's mouse, between ImGui::NewFrame and ImGui::Render. `visible`: the part of
   // the picture no panel covers (framebuffer pixels; a pulled body stops at its edge);
   // `ps`: framebuffer pixels per window coordinate.
-  void handle(LiveController& lc, AutoFitView& view, const render::PixelRect& visible,
-              double ps);
+  void handle(LiveController& lc, AutoFitView& view, const render::PixelRect& visible, double ps);
   // The spring or the hover ring, on ImGui's background draw list.
   void draw_markers(const LiveController& lc, const ViewTransform& view, double ps) const;
   bool dragging() const { return drag_ != Drag::None; }
