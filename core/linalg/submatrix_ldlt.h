@@ -1,6 +1,6 @@
 // Exact LDL^T of a principal submatrix H_DD of a sparse symmetric matrix, for a small index
 // set D that changes from one call to the next (PCG's block correction of a reused factor,
-// core/linalg/linear_solver.cpp).
+// core/linalg/pcg.cpp).
 //
 // D is ordered by reverse Cuthill-McKee (George & Liu, "Computer Solution of Large Sparse
 // Positive Definite Systems", 1981, ch. 4: breadth-first from a pseudo-peripheral node,

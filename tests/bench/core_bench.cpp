@@ -12,7 +12,7 @@
 #include <random>
 
 #include "collision/broad_phase.h"
-#include "linalg/linear_solver.h"
+#include "linalg/ldlt_backend.h"
 #include "linalg/parallel.h"
 #include "linalg/sparse_ldlt.h"
 #include "material/models.h"
@@ -142,7 +142,7 @@ BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 // the first step's Hessian times it as well as a compressed one and takes a second
 // instead of the 120 steps that `compressed` needs (about 40 s at n_seg 256:
 // `invfree bench --sizes 256 --steps 120`).
-// float:1 reads L rounded to float, as PCG does from kFloatPreconditionerMinEntries.
+// float:1 reads L rounded to float, as PCG does from kFloatPreconditionerMinEntries (pcg.h).
 // Items: entries of L.
 void BM_LdltSolve(benchmark::State& state) {
   SceneDef scene = *load_builtin_scene("compress").scene;

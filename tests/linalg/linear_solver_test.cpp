@@ -1,5 +1,5 @@
 // The Newton linear solve: every backend solves the system; PCG's inexact direction
-// never makes Newton stop where the exact direction would not (linear_solver.h's error
+// never makes Newton stop where the exact direction would not (pcg.h's error
 // bound), is always a descent direction, and reuses its factorisation; a run with each
 // solver keeps every invariant.
 #include "linalg/linear_solver.h"
@@ -42,7 +42,7 @@ struct System {
   }
 };
 
-// Reference solution by Eigen's own sparse LDL^T (independent of core/linear_solver.cpp).
+// Reference solution by Eigen's own sparse LDL^T (independent of the backends in core/linalg).
 VecX dense_solve(const Eigen::SparseMatrix<double>& H, const VecX& b) {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
   return ldlt.solve(b);
@@ -74,6 +74,12 @@ TEST(LinearSolver, BackendNamesFollowTheRequestAndTheProjection) {
   EXPECT_STREQ(s.backend_name(), "ldlt");
   s.setup(sys.H, LinearSolverKind::Cholmod, true);
   EXPECT_STREQ(s.backend_name(), "cholmod");
+  s.setup(sys.H, LinearSolverKind::Ldlt, true);
+  EXPECT_STREQ(s.backend_name(), "ldlt");
+  for (bool positive_definite : {true, false}) {  // PCG's factor is always the LDL^T
+    s.setup(sys.H, LinearSolverKind::Pcg, positive_definite);
+    EXPECT_STREQ(s.backend_name(), "pcg+ldlt");
+  }
 }
 
 // Newton stops when |p|_inf < threshold. With a reused (stale) factorisation PCG is

@@ -13,7 +13,7 @@
 #include <numeric>
 #include <random>
 
-#include "linalg/linear_solver.h"
+#include "linalg/ldlt_backend.h"
 #include "linalg/parallel.h"
 #include "linalg/sparse_hessian.h"
 #include "scene/mesh.h"

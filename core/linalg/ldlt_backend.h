@@ -1,0 +1,28 @@
+// The ldlt backend of LinearSolver (linear_solver.h), which is also the factorisation PCG
+// reuses: the project's own LDL^T (sparse_ldlt.h) analysed on a fill-reducing ordering,
+// then factorised and solved by SparseLdlt itself.
+//
+// From kNestedDissectionMinUnknowns unknowns the ordering is METIS's nested dissection
+// (through CHOLMOD's analysis, cholmod_backend.h): less fill than AMD on larger meshes and
+// a balanced elimination tree for the threads; below it, and without CHOLMOD, AMD. From
+// kParallelLdltMinUnknowns the tree is cut into kLdltBins parts that factorise and solve
+// concurrently. The number of parts is fixed, whatever the thread count, so results are
+// bit-identical on any machine.
+#pragma once
+
+#include <Eigen/SparseCore>
+
+namespace invfree {
+
+class SparseLdlt;
+
+constexpr int kNestedDissectionMinUnknowns = 5000;
+constexpr int kParallelLdltMinUnknowns = 1000;
+constexpr int kLdltBins = 2;
+
+// The analysis of `pattern` (full symmetric storage) exactly as the solver makes it
+// (ordering and bins above); also for benchmarks and tests that time a SparseLdlt of
+// their own.
+void analyze_like_the_solver(const Eigen::SparseMatrix<double>& pattern, SparseLdlt& ldlt);
+
+}  // namespace invfree
