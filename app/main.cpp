@@ -1,7 +1,7 @@
 // invfree: the command-line entry point. Each command lives in its own file and
 // registers itself in commands.h. Around every command: the signal handlers first
-// (app/interrupt.h), the INVFREE_THREADS check, and after it the check that standard
-// output (the summary line) was written.
+// (app/interrupt.h), INVFREE_THREADS (checked, then given to the core), and after it the
+// check that standard output (the summary line) was written.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -13,22 +13,28 @@
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
 #include "app/output_files.h"
+#include "linalg/parallel.h"
 
 namespace {
 
-// INVFREE_THREADS (the worker threads, core/linalg/parallel.h) must be a whole number
-// from 1 to 256 when set and not empty; "" or a one-line error.
-std::string check_thread_variable() {
+// INVFREE_THREADS: the core's worker threads (core/linalg/parallel.h), a whole number
+// from 1 to 256 when set and not empty. `threads` 0 (unset or empty) means every core.
+struct ThreadVariable {
+  int threads = 0;
+  std::string error;  // "" or a one-line error
+};
+
+ThreadVariable read_thread_variable() {
   const char* value = std::getenv("INVFREE_THREADS");
-  if (value == nullptr || *value == '\0') return "";
+  if (value == nullptr || *value == '\0') return {};
   const std::string text = value;
   const bool digits = text.size() <= 3 && text.find_first_not_of("0123456789") == std::string::npos;
-  if (digits && std::atoi(value) >= 1 && std::atoi(value) <= 256) return "";
+  if (digits && std::atoi(value) >= 1 && std::atoi(value) <= 256) return {std::atoi(value), ""};
   std::string shown = text.substr(0, 40);
   for (char& c : shown)
     if (c < ' ' || c == 127) c = '?';
-  return "INVFREE_THREADS=\"" + shown + (text.size() > 40 ? "...\"" : "\"") +
-         ": expected a whole number from 1 to 256 (or unset it to use every core)";
+  return {0, "INVFREE_THREADS=\"" + shown + (text.size() > 40 ? "...\"" : "\"") +
+                 ": expected a whole number from 1 to 256 (or unset it to use every core)"};
 }
 
 }  // namespace
@@ -46,7 +52,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "invfree " INVFREE_VERSION);
   // After parsing (so --help still works), before any command runs.
   app.parse_complete_callback([] {
-    if (const std::string e = check_thread_variable(); !e.empty()) throw CLI::ValidationError(e);
+    const ThreadVariable threads = read_thread_variable();
+    if (!threads.error.empty()) throw CLI::ValidationError(threads.error);
+    invfree::set_thread_count(threads.threads);
   });
   int exit_code = invfree::exit_code::kOk;
   invfree::register_simulate_command(app, exit_code);

@@ -25,6 +25,7 @@
 
 #include "app/live/course.h"
 #include "app/live/live_app.h"
+#include "linalg/parallel.h"
 #include "scene/scene.h"
 #include "scene_io/builtin_scenes.h"
 
@@ -255,7 +256,7 @@ extern "C" EMSCRIPTEN_KEEPALIVE void invfree_tap() {
 int main() {
   // The page has no threads (no -pthread: that would need cross-origin isolation headers
   // from the server); the core's thread pool then runs everything on the calling thread.
-  setenv("INVFREE_THREADS", "1", 1);
+  invfree::set_thread_count(1);
   emscripten_set_main_loop_arg(page_frame, &g_page, 0, 1);
   return 0;
 }

@@ -1,6 +1,5 @@
 #include "linalg/parallel.h"
 
-#include <cstdlib>
 #include <memory>
 #include <mutex>
 
@@ -21,17 +20,14 @@ inline void cpu_relax() {
 // About 10-30 microseconds of spinning before a worker (or the caller) sleeps.
 constexpr int kSpinIterations = 2000;
 
-int default_thread_count() {
-  if (const char* env = std::getenv("INVFREE_THREADS")) {
-    const int n = std::atoi(env);
-    if (n >= 1 && n <= 256) return n;
-  }
+int threads_per_core() {
   const unsigned hw = std::thread::hardware_concurrency();
   return hw == 0 ? 1 : static_cast<int>(hw);
 }
 
 std::mutex g_pool_mutex;
 std::unique_ptr<ThreadPool> g_pool;
+int g_thread_count = 0;  // set_thread_count's setting; 0: one per core
 
 }  // namespace
 
@@ -96,7 +92,8 @@ void ThreadPool::run_impl(int tasks, TaskFn call, void* ctx) {
 
 ThreadPool& thread_pool() {
   std::lock_guard<std::mutex> lock(g_pool_mutex);
-  if (!g_pool) g_pool = std::make_unique<ThreadPool>(default_thread_count());
+  if (!g_pool)
+    g_pool = std::make_unique<ThreadPool>(g_thread_count > 0 ? g_thread_count : threads_per_core());
   return *g_pool;
 }
 
@@ -106,7 +103,8 @@ int thread_count() {
 
 void set_thread_count(int n) {
   std::lock_guard<std::mutex> lock(g_pool_mutex);
-  g_pool = std::make_unique<ThreadPool>(n <= 0 ? default_thread_count() : n);
+  g_thread_count = std::max(n, 0);
+  if (g_pool) g_pool = std::make_unique<ThreadPool>(n > 0 ? n : threads_per_core());
 }
 
 }  // namespace invfree

@@ -7,8 +7,9 @@
 //
 // Workers spin briefly (a few microseconds: Newton's parallel phases come in quick
 // succession) and then sleep on a futex, so an idle pool costs no CPU. One process-wide
-// pool is shared by every simulation; `set_thread_count` resizes it (tests, benchmarks,
-// the INVFREE_THREADS environment variable at start-up).
+// pool is shared by every simulation. Its size is a setting, `set_thread_count`, never
+// read from the environment: the program decides (the command line reads INVFREE_THREADS,
+// app/main.cpp; tests and benchmarks set their own).
 #pragma once
 
 #include <algorithm>
@@ -79,10 +80,12 @@ inline BlockSplit split_blocks(int n, int min_block, int max_blocks) {
   return {(n + size - 1) / size, size};
 }
 
-// The shared pool (created on first use with INVFREE_THREADS or the number of cores).
+// The shared pool, created on first use with the thread count set last (the caller's
+// thread included), or by default one thread per core.
 ThreadPool& thread_pool();
 int thread_count();
-// Resizes the shared pool; n <= 0 means the number of cores. Not while a step runs.
+// Sets the shared pool's thread count: n threads, or with n <= 0 one per core (the
+// default). A pool already created is resized at once. Not while a step runs.
 void set_thread_count(int n);
 
 }  // namespace invfree

@@ -9,6 +9,7 @@
 // The whole-run scaling curve (every phase of the scene, medians) is `invfree bench`.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <random>
 
 #include "collision/broad_phase.h"
@@ -259,4 +260,14 @@ BENCHMARK(BM_SelfContactBarrier)->Arg(64)->Arg(256)->Unit(benchmark::kMicrosecon
 }  // namespace
 }  // namespace invfree
 
-BENCHMARK_MAIN();
+// INVFREE_THREADS sets the core's thread count here too (1 to 256; otherwise every core),
+// e.g. `INVFREE_THREADS=1 invfree_bench --benchmark_filter=LdltSolve`.
+int main(int argc, char** argv) {
+  if (const char* value = std::getenv("INVFREE_THREADS"))
+    if (const int n = std::atoi(value); n >= 1 && n <= 256) invfree::set_thread_count(n);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,11 +1,16 @@
 // The performance paths give the same answers as the plain ones: the structured
 // per-triangle kernel equals the dense chain rule; the parallel assembly, energy and
 // whole simulation are bit-identical for any number of threads; the colouring plan never
-// puts two chunks that share a node in one colour.
+// puts two chunks that share a node in one colour; the thread count is the core's setting
+// alone, never the environment's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <random>
+#include <string>
+#include <thread>
 
 #include "linalg/parallel.h"
 #include "material/models.h"
@@ -140,6 +145,22 @@ TEST(ParallelAssembly, WholeRunBitIdenticalForAnyThreadCount) {
   set_thread_count(0);
   EXPECT_TRUE(same_bits(one, two));
   EXPECT_TRUE(same_bits(one, three));
+}
+
+// INVFREE_THREADS is the command line's (app/main.cpp): the core never reads it.
+TEST(ThreadPool, SizedByItsSettingAlone) {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const char* before = std::getenv("INVFREE_THREADS");
+  const std::string saved = before ? before : "";
+  setenv("INVFREE_THREADS", std::to_string(cores + 1).c_str(), 1);
+  set_thread_count(3);
+  EXPECT_EQ(thread_count(), 3);
+  set_thread_count(0);  // the default: one per core
+  EXPECT_EQ(thread_count(), cores);
+  if (before)
+    setenv("INVFREE_THREADS", saved.c_str(), 1);
+  else
+    unsetenv("INVFREE_THREADS");
 }
 
 }  // namespace
