@@ -1,5 +1,7 @@
 #include "material/material.h"
 
+#include "material/models.h"
+
 namespace invfree {
 
 Lame lame_from_young_poisson(double youngs, double poisson) {
@@ -17,46 +19,28 @@ bool model_allows_inversion(Model m) {
   return m != Model::NeoHookean;
 }
 
-namespace {
-struct ModelName {
-  Model model;
-  const char* name;
-};
-constexpr ModelName kModelNames[] = {{Model::NeoHookean, "neo-hookean"},
-                                     {Model::Linear, "linear"},
-                                     {Model::Arap, "arap"},
-                                     {Model::StableNeoHookean, "stable-neo-hookean"}};
-struct ProjectionName {
-  HessianProjection projection;
-  const char* name;
-};
-constexpr ProjectionName kProjectionNames[] = {{HessianProjection::Diagonal, "diagonal"},
-                                               {HessianProjection::Full, "full"},
-                                               {HessianProjection::None, "none"}};
-}  // namespace
-
 const char* model_name(Model m) {
-  for (const auto& e : kModelNames)
-    if (e.model == m) return e.name;
-  return "?";
+  return enum_name(kModelNames, m);
+}
+
+const char* model_label(Model m) {
+  return enum_name(kModelLabels, m);
 }
 
 std::optional<Model> model_from_name(std::string_view name) {
-  for (const auto& e : kModelNames)
-    if (name == e.name) return e.model;
-  return std::nullopt;
+  return enum_from_name(kModelNames, name);
+}
+
+std::span<const EnumName<Model>> model_names() {
+  return kModelNames;
 }
 
 const char* projection_name(HessianProjection p) {
-  for (const auto& e : kProjectionNames)
-    if (e.projection == p) return e.name;
-  return "?";
+  return enum_name(kProjectionNames, p);
 }
 
 std::optional<HessianProjection> projection_from_name(std::string_view name) {
-  for (const auto& e : kProjectionNames)
-    if (name == e.name) return e.projection;
-  return std::nullopt;
+  return enum_from_name(kProjectionNames, name);
 }
 
 }  // namespace invfree

@@ -5,7 +5,10 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string_view>
+
+#include "scene/enum_names.h"
 
 namespace invfree {
 
@@ -17,6 +20,10 @@ enum class HessianProjection {
   Full,      // clamp the eigenvalues of each triangle's whole 6x6 Hessian
   None       // exact, possibly indefinite Hessian (plain Newton)
 };
+inline constexpr EnumName<HessianProjection> kProjectionNames[] = {
+    {HessianProjection::Diagonal, "diagonal"},
+    {HessianProjection::Full, "full"},
+    {HessianProjection::None, "none"}};
 
 struct Lame {
   double mu = 0.0;
@@ -31,8 +38,11 @@ void young_poisson_from_lame(const Lame& lame, double* youngs, double* poisson);
 
 // Invertible models accept det F <= 0; neo-Hookean needs det F > 0 (it is a barrier).
 bool model_allows_inversion(Model m);
-const char* model_name(Model m);  // the scene-file spelling, e.g. "neo-hookean"
+// A model's names come from its entry in kModels (material/models.h).
+const char* model_name(Model m);   // the scene-file spelling, e.g. "neo-hookean"
+const char* model_label(Model m);  // for people, e.g. "neo-Hookean"
 std::optional<Model> model_from_name(std::string_view name);
+std::span<const EnumName<Model>> model_names();  // every model, in the enum's order
 const char* projection_name(HessianProjection p);
 std::optional<HessianProjection> projection_from_name(std::string_view name);
 
