@@ -4,71 +4,17 @@
 #include <cstdio>
 
 #include "scene/initial_state.h"
+#include "scene/scene_fields.h"
 
 namespace invfree {
 
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr ValueBounds kFinite{};
-constexpr ValueBounds kPositive{0.0, kInf, true, false, false};
-constexpr ValueBounds kNonNegative{0.0, kInf, false, false, false};
-constexpr ValueBounds kBelowHalf{0.0, 0.5, false, true, false};  // [0, 0.5)
 
 std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
-
-// Every bounded value. Ranges are checked whether or not the term that uses a value is
-// switched on: a bad value stays bad when a later --set switches its term on, and a
-// student learns of it at once.
-constexpr BoundedValue kBounded[] = {
-    {"mesh.side", [](const SceneDef& s) { return s.side; }, kPositive},
-    {"mesh.n_seg",
-     [](const SceneDef& s) { return double(s.n_seg); },
-     {1.0, double(kMaxSegments), false, false, true}},
-    {"mesh.density", [](const SceneDef& s) { return s.density; }, kPositive},
-    {"mesh.jitter", [](const SceneDef& s) { return s.jitter; }, kBelowHalf},
-    {"mesh.seed",
-     [](const SceneDef& s) { return double(s.seed); },
-     {0.0, kInf, false, false, true}},
-    {"material.E", nullptr, kPositive},
-    {"material.nu", nullptr, kBelowHalf},
-    {"material.mu", [](const SceneDef& s) { return s.lame.mu; }, kPositive},
-    {"material.lambda", [](const SceneDef& s) { return s.lame.lambda; }, kNonNegative},
-    {"time.h", [](const SceneDef& s) { return s.h; }, kPositive},
-    {"time.tol", [](const SceneDef& s) { return s.tol; }, kPositive},
-    {"time.max_newton",
-     [](const SceneDef& s) { return double(s.max_newton); },
-     {1.0, 100000.0, false, false, true}},
-    {"ground.y", [](const SceneDef& s) { return s.ground_y; }, kFinite},
-    {"ground.friction", [](const SceneDef& s) { return s.friction; }, kNonNegative},
-    {"ceiling.y", [](const SceneDef& s) { return s.ceiling_y; }, kFinite},
-    {"ceiling.velocity", [](const SceneDef& s) { return s.ceiling_velocity; }, kFinite},
-    {"ceiling.stop", [](const SceneDef& s) { return s.ceiling_stop; }, kFinite},
-    {"barrier.dhat", [](const SceneDef& s) { return s.dhat; }, kPositive},
-    {"barrier.kappa", [](const SceneDef& s) { return s.kappa; }, kPositive},
-    {"mass_spring.stiffness", [](const SceneDef& s) { return s.spring_stiffness; }, kPositive},
-    {"self_contact.friction", [](const SceneDef& s) { return s.self_friction; }, kNonNegative},
-};
-
-constexpr struct {
-  FixedCorners corners;
-  const char* name;
-} kCornerNames[] = {
-    {FixedCorners::None, "none"},
-    {FixedCorners::TopLeft, "top-left"},
-    {FixedCorners::TopRight, "top-right"},
-    {FixedCorners::BottomLeft, "bottom-left"},
-    {FixedCorners::BottomRight, "bottom-right"},
-    {FixedCorners::Top, "top"},
-    {FixedCorners::Bottom, "bottom"},
-    {FixedCorners::Left, "left"},
-    {FixedCorners::Right, "right"},
-    {FixedCorners::All, "all"},
-};
 
 // The course's vector values: finite, a ground normal that is not zero, a positive stretch.
 std::optional<SceneProblem> find_vector_problem(const SceneDef& s) {
@@ -85,25 +31,19 @@ std::optional<SceneProblem> find_vector_problem(const SceneDef& s) {
 }  // namespace
 
 const char* integrator_name(Integrator i) {
-  return i == Integrator::ImplicitEuler ? "implicit-euler" : "symplectic-euler";
+  return enum_name(kIntegratorNames, i);
 }
 
 std::optional<Integrator> integrator_from_name(std::string_view name) {
-  if (name == "implicit-euler") return Integrator::ImplicitEuler;
-  if (name == "symplectic-euler") return Integrator::SymplecticEuler;
-  return std::nullopt;
+  return enum_from_name(kIntegratorNames, name);
 }
 
 const char* fixed_corners_name(FixedCorners c) {
-  for (const auto& n : kCornerNames)
-    if (n.corners == c) return n.name;
-  return "none";
+  return enum_name(kFixedCornersNames, c, "none");
 }
 
 std::optional<FixedCorners> fixed_corners_from_name(std::string_view name) {
-  for (const auto& n : kCornerNames)
-    if (name == n.name) return n.corners;
-  return std::nullopt;
+  return enum_from_name(kFixedCornersNames, name);
 }
 
 int body_count(const SceneDef& s) {
@@ -177,46 +117,34 @@ std::string ValueBounds::requirement() const {
   return "must be finite";
 }
 
-std::span<const BoundedValue> scene_value_bounds() {
-  return kBounded;
-}
-
-const ValueBounds* find_value_bounds(std::string_view key) {
-  for (const auto& v : kBounded)
-    if (key == v.key) return &v.bounds;
-  return nullptr;
-}
-
-// Each [[body]]'s own values, under the key "body.<key>" and a reason that names the body
-// (1-based, as a reader counts the tables).
+// Each [[body]]'s own values (scene_fields.h's body_fields), under the key "body.<key>"
+// and a reason that names the body (1-based, as a reader counts the tables).
 static std::optional<SceneProblem> find_body_problem(const SceneDef& s) {
   if (s.bodies.size() > static_cast<size_t>(kMaxBodies))
     return SceneProblem{"body", "at most " + std::to_string(kMaxBodies) + " [[body]] tables", {}};
-  auto problem = [](size_t k, const char* key, const std::string& why) {
-    return SceneProblem{
-        std::string("body.") + key, why + " (in [[body]] " + std::to_string(k + 1) + ")", {}};
-  };
-  const ValueBounds& side = *find_value_bounds("mesh.side");
-  const ValueBounds& n_seg = *find_value_bounds("mesh.n_seg");
-  const ValueBounds& mu = *find_value_bounds("material.mu");
-  const ValueBounds& lambda = *find_value_bounds("material.lambda");
-  for (size_t k = 0; k < s.bodies.size(); ++k) {
-    const BodyDef& b = s.bodies[k];
-    if (b.side && !side.contains(*b.side)) return problem(k, "side", side.requirement());
-    if (b.n_seg && !n_seg.contains(*b.n_seg)) return problem(k, "n_seg", n_seg.requirement());
-    if (!b.offset.allFinite()) return problem(k, "offset", "must be finite");
-    if (b.velocity && !b.velocity->allFinite()) return problem(k, "velocity", "must be finite");
-    if (b.lame && !mu.contains(b.lame->mu)) return problem(k, "mu", mu.requirement());
-    if (b.lame && !lambda.contains(b.lame->lambda))
-      return problem(k, "lambda", lambda.requirement());
-  }
+  for (size_t k = 0; k < s.bodies.size(); ++k)
+    for (const BodyField& f : body_fields()) {
+      const std::optional<FieldValue> v = f.get ? f.get(s.bodies[k]) : std::nullopt;
+      if (!v) continue;
+      std::string why;
+      if (const Vec2* u = std::get_if<Vec2>(&*v)) {
+        if (!u->allFinite()) why = "must be finite";
+      } else if (const ValueBounds* b = f.stands_for ? find_value_bounds(f.stands_for) : nullptr) {
+        if (!b->contains(field_number(*v))) why = b->requirement();
+      }
+      if (!why.empty())
+        return SceneProblem{std::string("body.") + f.key,
+                            why + " (in [[body]] " + std::to_string(k + 1) + ")",
+                            {}};
+    }
   return std::nullopt;
 }
 
 std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
-  for (const auto& v : kBounded)
-    if (v.get && !v.bounds.contains(v.get(s)))
-      return SceneProblem{v.key, v.bounds.requirement(), {}};
+  for (const SceneField& f : scene_fields())
+    if (f.kept && (f.type == FieldType::Number || f.type == FieldType::Integer) &&
+        !f.bounds.contains(field_number(f.get(s))))
+      return SceneProblem{f.name(), f.bounds.requirement(), {}};
   if (auto problem = find_body_problem(s)) return problem;
   if (auto e = check_mesh_fits_in_memory(s); !e.empty()) return SceneProblem{"mesh.n_seg", e, {}};
   if (!s.initial_velocity.allFinite())

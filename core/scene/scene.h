@@ -14,11 +14,14 @@
 
 #include "linalg/linear_solver_kind.h"
 #include "material/material.h"
+#include "scene/enum_names.h"
 #include "scene/mesh.h"
 
 namespace invfree {
 
 enum class Integrator { ImplicitEuler, SymplecticEuler };
+inline constexpr EnumName<Integrator> kIntegratorNames[] = {
+    {Integrator::ImplicitEuler, "implicit-euler"}, {Integrator::SymplecticEuler, "symplectic-euler"}};
 const char* integrator_name(Integrator i);
 std::optional<Integrator> integrator_from_name(std::string_view name);
 
@@ -35,8 +38,24 @@ enum class FixedCorners : unsigned {
   Right = 10,
   All = 15
 };
+inline constexpr EnumName<FixedCorners> kFixedCornersNames[] = {
+    {FixedCorners::None, "none"},
+    {FixedCorners::TopLeft, "top-left"},
+    {FixedCorners::TopRight, "top-right"},
+    {FixedCorners::BottomLeft, "bottom-left"},
+    {FixedCorners::BottomRight, "bottom-right"},
+    {FixedCorners::Top, "top"},
+    {FixedCorners::Bottom, "bottom"},
+    {FixedCorners::Left, "left"},
+    {FixedCorners::Right, "right"},
+    {FixedCorners::All, "all"},
+};
 const char* fixed_corners_name(FixedCorners c);
 std::optional<FixedCorners> fixed_corners_from_name(std::string_view name);
+
+// [mesh] mass (scene/mesh.h's MassMode), as a scene file spells it.
+inline constexpr EnumName<MassMode> kMassModeNames[] = {{MassMode::Uniform, "uniform"},
+                                                        {MassMode::Lumped, "lumped"}};
 
 // [[body]]: one square of a scene with several bodies. An unset value takes the scene's:
 // [mesh] side and n_seg, [initial] velocity, [material]. The body's centre sits at
@@ -165,16 +184,21 @@ struct ValueBounds {
   std::string range() const;        // "> 0", "[0, 0.5)", "1 to 4096"; "" when only finite
 };
 
-// A value's bounds under its scene key, "section.key". validate_scene checks every value
-// that has a `get`; the scene file reader checks each value as it reads it (E and nu too,
-// which the scene keeps as mu and lambda) and prints the ranges in docs/scene-keys.md.
+// A value's bounds under its scene key, "section.key": the Number and Integer rows of the
+// scene field table (scene/scene_fields.h), E and nu too, which the scene keeps as mu and
+// lambda. find_scene_problem checks every kept one; the scene file reader checks each
+// value as it reads it, and docs/scene-keys.md prints the ranges.
 struct BoundedValue {
-  const char* key;
-  double (*get)(const SceneDef&);  // nullptr: an input converted before it reaches SceneDef
+  std::string key;
   ValueBounds bounds;
 };
-std::span<const BoundedValue> scene_value_bounds();
+std::vector<BoundedValue> scene_value_bounds();
 const ValueBounds* find_value_bounds(std::string_view key);  // nullptr when none
+
+// The rule of needs_new_mesh (simulation.h), from the scene field table
+// (scene/scene_fields.h): a field marked new_mesh differs, or the bodies' count, or a
+// body's field marked new_mesh (a body's own material is not).
+bool fields_need_new_mesh(const SceneDef& old, const SceneDef& next);
 
 // What is wrong with a scene: the key whose value is out of range or whose relation to
 // another fails, why, and the other keys the check read (so that a reader of scene files

@@ -10,17 +10,6 @@ namespace invfree::scene_io {
 
 namespace {
 
-constexpr BodyKeyDoc kBodyKeys[] = {
-    {"side", "number", "m", "edge length of this body's square (default: mesh.side)"},
-    {"n_seg", "integer", "", "segments per side (default: mesh.n_seg)"},
-    {"offset", "[x, y]", "m", "the square's centre at rest"},
-    {"velocity", "[x, y]", "m/s", "its velocity at t = 0 (default: initial.velocity)"},
-    {"E", "number", "Pa", "its own Young's modulus (default: [material])"},
-    {"nu", "number", "", "its own Poisson's ratio"},
-    {"mu", "number", "Pa", "its own Lame mu, instead of E and nu"},
-    {"lambda", "number", "Pa", "its own Lame lambda, instead of E and nu"},
-};
-
 // A number within the range of the [mesh] or [material] key it stands for.
 std::string number_in(const std::string& bounds_key, const toml::node& n, double& out) {
   if (auto r = read_number(n, out); !r.empty()) return r;
@@ -40,30 +29,28 @@ std::string vec2_in(const toml::node& n, Vec2& out) {
   return "";
 }
 
-// One key of a [[body]] table into `in`; "" or the reason.
-std::string read_body_key(const std::string& key, const toml::node& n, BodyInput& in) {
-  double v = 0.0;
-  if (key == "side") {
-    if (auto r = number_in("mesh.side", n, v); !r.empty()) return r;
-    in.body.side = v;
-  } else if (key == "n_seg") {
+// One key of a [[body]] table into `in`; "" or the reason. A number is within the range of
+// the [mesh] or [material] key it stands for; n_seg must be a TOML integer.
+std::string read_body_key(const BodyField& f, const toml::node& n, BodyInput& in) {
+  FieldValue value;
+  if (f.type == FieldType::Number) {
+    double v = 0.0;
+    if (auto r = number_in(f.stands_for, n, v); !r.empty()) return r;
+    value = v;
+  } else if (f.type == FieldType::Integer) {
     if (!n.is_integer()) return "expected an integer, got " + toml_type_name(n);
     const long long i = n.as_integer()->get();
-    if (auto r = bounds_problem("mesh.n_seg", static_cast<double>(i)); !r.empty()) return r;
-    in.body.n_seg = static_cast<int>(i);
-  } else if (key == "offset") {
-    return vec2_in(n, in.body.offset);
-  } else if (key == "velocity") {
-    Vec2 u;
+    if (auto r = bounds_problem(f.stands_for, static_cast<double>(i)); !r.empty()) return r;
+    value = i;
+  } else {
+    Vec2 u = Vec2::Zero();
     if (auto r = vec2_in(n, u); !r.empty()) return r;
-    in.body.velocity = u;
-  } else {  // E, nu, mu, lambda
-    if (auto r = number_in("material." + key, n, v); !r.empty()) return r;
-    (key == "E"    ? in.material.E
-     : key == "nu" ? in.material.nu
-     : key == "mu" ? in.material.mu
-                   : in.material.lambda) = v;
+    value = u;
   }
+  if (f.input)
+    in.material.*(f.input) = std::get<double>(value);
+  else
+    f.set(in.body, value);
   return "";
 }
 
@@ -73,13 +60,9 @@ BodyError located(int line, std::string what) {
 
 }  // namespace
 
-std::span<const BodyKeyDoc> body_key_docs() {
-  return kBodyKeys;
-}
-
 std::vector<std::string> body_keys() {
   std::vector<std::string> out;
-  for (const auto& k : kBodyKeys) out.emplace_back(k.key);
+  for (const auto& f : body_fields()) out.emplace_back(f.key);
   return out;
 }
 
@@ -107,7 +90,7 @@ BodyError read_body_tables(const toml::node& node, std::vector<BodyInput>& out) 
         return located(vline, "body." + printable(name) + ": unknown key" +
                                   did_you_mean(name, keys) +
                                   " (keys of [[body]]: " + join_words(keys) + ")");
-      if (auto r = read_body_key(name, value, in); !r.empty())
+      if (auto r = read_body_key(*find_body_field(name), value, in); !r.empty())
         return located(vline, "body." + name + ": " + r + which);
       in.key_lines.emplace_back(name, vline);
     }
@@ -141,14 +124,9 @@ std::string body_tables_to_toml(const SceneDef& scene) {
   std::string out;
   for (const BodyDef& b : scene.bodies) {
     out += "\n[[body]]\n";
-    if (b.side) out += "side = " + toml_number(*b.side) + "\n";
-    if (b.n_seg) out += "n_seg = " + std::to_string(*b.n_seg) + "\n";
-    out += "offset = [" + toml_number(b.offset.x()) + ", " + toml_number(b.offset.y()) + "]\n";
-    if (b.velocity)
-      out += "velocity = [" + toml_number(b.velocity->x()) + ", " + toml_number(b.velocity->y()) +
-             "]\n";
-    if (b.lame)
-      out += "mu = " + toml_number(b.lame->mu) + "\nlambda = " + toml_number(b.lame->lambda) + "\n";
+    for (const auto& f : body_fields())
+      if (const auto v = f.get ? f.get(b) : std::nullopt)
+        out += std::string(f.key) + " = " + value_text(*v) + "\n";
   }
   return out;
 }
@@ -158,15 +136,13 @@ std::string body_tables_to_toml(const SceneDef& scene) {
 namespace invfree {
 
 std::vector<SceneKeyInfo> body_key_info() {
+  const BodyDef defaults;
   std::vector<SceneKeyInfo> out;
-  for (const auto& k : scene_io::body_key_docs()) {
-    const std::string key = k.key;
-    SceneKeyInfo info{"body", k.key, k.type, k.unit, "", {}, key == "offset" ? "[0.0, 0.0]" : "",
-                      k.doc};
-    const std::string stands_for = key == "side" || key == "n_seg"        ? "mesh." + key
-                                   : key == "offset" || key == "velocity" ? ""
-                                                                          : "material." + key;
-    if (const ValueBounds* b = stands_for.empty() ? nullptr : find_value_bounds(stands_for))
+  for (const auto& f : body_fields()) {
+    const auto v = f.get ? f.get(defaults) : std::nullopt;
+    SceneKeyInfo info{"body", f.key, field_type_name(f.type), f.unit, "", {},
+                      v ? scene_io::value_text(*v) : "", f.doc};
+    if (const ValueBounds* b = f.stands_for ? find_value_bounds(f.stands_for) : nullptr)
       info.range = b->range();
     out.push_back(std::move(info));
   }

@@ -1,10 +1,7 @@
-// The [[body]] tables of a scene file: an array of tables, one per body, each with
-//   side, n_seg            the body's square (default: [mesh] side and n_seg)
-//   offset = [x, y]        its centre at rest (m; default [0, 0])
-//   velocity = [vx, vy]    its initial velocity (m/s; default [initial] velocity)
-//   E and nu, or mu and lambda   its own material (default: [material])
-// read into SceneDef::bodies (scene/scene.h) and written back by scene_to_toml. Private
-// to scene_io: it speaks toml++.
+// The [[body]] tables of a scene file: an array of tables, one per body, with the keys of
+// scene/scene_fields.h's body_fields() (side, n_seg, offset, velocity, E and nu or mu and
+// lambda), read into SceneDef::bodies (scene/scene.h) and written back by scene_to_toml.
+// Private to scene_io: it speaks toml++.
 #pragma once
 
 #include <toml++/toml.h>
@@ -40,13 +37,5 @@ std::string apply_body_materials(SceneDef& scene, std::span<const BodyInput> in,
 std::string body_tables_to_toml(const SceneDef& scene);
 // The keys of a [[body]] table, for errors and docs.
 std::vector<std::string> body_keys();
-
-struct BodyKeyDoc {
-  const char* key;
-  const char* type;
-  const char* unit;
-  const char* doc;
-};
-std::span<const BodyKeyDoc> body_key_docs();
 
 }  // namespace invfree::scene_io

@@ -1,10 +1,8 @@
-// The scene-file keys, one row each: section, key, value type, unit, one-line doc, the
-// choices of a string key, and how the value is read into and written from a SceneDef.
+// The TOML glue of the scene field table (scene/scene_fields.h, the one table of keys,
+// types, ranges and docs): a TOML value read into a field, a field written as TOML text.
 // Parsing and --set (scene_file.cpp), scene_to_toml, the "unknown key" errors and
-// docs/scene-keys.md all come from this table; a value's range comes from the core
-// (scene_value_bounds) and is checked here as the value is read. Private to scene_io: it
-// speaks toml++. Adding a key: a SceneDef field, its bounds in core/scene/scene.cpp if it
-// has any, one row below (key_table.cpp), then regenerate docs/scene-keys.md.
+// docs/scene-keys.md use it. Private to scene_io: it speaks toml++. Adding a key: one row
+// in core/scene/scene_fields.cpp, nothing here.
 #pragma once
 
 #include <toml++/toml.h>
@@ -16,53 +14,24 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/scene_fields.h"
 
 namespace invfree::scene_io {
 
-// E and nu, or mu and lambda, as read; apply_material turns them into the scene's Lame
-// parameters once every key is known (a value given alone keeps the other of its pair).
-struct MaterialInput {
-  std::optional<double> E, nu, mu, lambda;
-};
+using invfree::apply_material;
+using invfree::MaterialInput;
 
-enum class ValueType { Number, Integer, Boolean, Choice, Vector };
-const char* value_type_name(ValueType type);  // as docs/scene-keys.md writes it
+// Reads `value` into the scene (or into `material`, for the material keys): the TOML type
+// checked, then the field's range. Returns "" or the reason.
+std::string read_field(const SceneField& f, SceneDef& scene, MaterialInput& material,
+                       const toml::node& value);
+// The field's value in the scene as TOML text.
+std::string write_field(const SceneField& f, const SceneDef& scene);
+// A value as TOML text ("1.0", "4", "true", "\"linear\"", "[0.0, -9.81]").
+std::string value_text(const FieldValue& v);
 
-struct KeySpec {
-  const char* section;
-  const char* key;
-  ValueType type;
-  const char* unit;  // SI, "" when none
-  const char* doc;
-  std::span<const char* const> choices;  // a Choice's values, as written in TOML
-  // Reads `value` into the scene (or into `material`); returns "" or the reason.
-  std::string (*read)(const KeySpec& self, SceneDef& scene, MaterialInput& material,
-                      const toml::node& value);
-  // The value's TOML text.
-  std::string (*write)(const SceneDef& scene);
-  // False for an input the scene does not keep as such (E and nu: scene_to_toml writes mu
-  // and lambda, which give back the very same doubles).
-  bool kept = true;
-
-  std::string name() const { return std::string(section) + "." + key; }
-};
-
-struct SectionSpec {
-  const char* name;
-  bool SceneDef::*term;  // switched on by the section's presence; nullptr for none
-  const char* doc;
-};
-
-std::span<const KeySpec> key_table();
-std::span<const SectionSpec> section_table();
-const KeySpec* find_key(std::string_view section, std::string_view key);
-const SectionSpec* find_section(std::string_view name);
 std::vector<std::string> keys_of(std::string_view section);
 std::vector<std::string> section_names();
-
-// Sets the scene's Lame parameters from the material keys read. Returns "" or
-// "material.<key>: reason" naming a key that was given.
-std::string apply_material(SceneDef& scene, const MaterialInput& in);
 
 // "a number", "a string", ...: what a value is, for errors.
 std::string toml_type_name(const toml::node& value);

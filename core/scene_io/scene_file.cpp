@@ -23,8 +23,6 @@ namespace invfree {
 
 namespace {
 
-using scene_io::KeySpec;
-using scene_io::MaterialInput;
 
 // Scene files larger than this are certainly not scenes (the built-in ones are < 1 kB);
 // refusing them keeps `--scene /dev/zero` or a stray video from eating memory.
@@ -45,12 +43,12 @@ std::string unknown_key_error(const std::string& section, std::string_view key) 
 
 // Reads one key (known to exist) into the scene; a key of a term's section other than
 // `enabled` switches the term on, as the section's presence does. Returns "" or a reason.
-std::string apply_key(SceneDef& s, const KeySpec& spec, const toml::node& value,
+std::string apply_key(SceneDef& s, const SceneField& spec, const toml::node& value,
                       MaterialInput& material) {
-  const scene_io::SectionSpec* section = scene_io::find_section(spec.section);
+  const SceneSection* section = find_scene_section(spec.section);
   if (section && section->term && std::string_view(spec.key) != "enabled")
     s.*(section->term) = true;
-  return spec.read(spec, s, material, value);
+  return scene_io::read_field(spec, s, material, value);
 }
 
 // The message for a problem validation found, naming a key the user wrote: the problem's
@@ -116,7 +114,7 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     return fail(static_cast<int>(e.source().begin.line), "malformed TOML: " + printable(what, 200));
   }
   SceneDef s;
-  for (const auto& section : scene_io::section_table())
+  for (const auto& section : scene_sections())
     if (section.term) s.*(section.term) = false;  // switched on by their sections
   {                                               // name defaults to the file's stem
     std::string stem = source.substr(source.find_last_of('/') + 1);
@@ -141,7 +139,7 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
         return fail(line, "name: must not contain control characters");
       continue;
     }
-    const scene_io::SectionSpec* section = scene_io::find_section(k);
+    const SceneSection* section = find_scene_section(k);
     if (!section) {
       if (node.is_table()) return fail(line, printable(k) + ": " + unknown_section_error(k));
       return fail(line, printable(k) +
@@ -161,7 +159,7 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
         if ((sk == "enabled") != (pass == 1)) continue;
         const std::string full = k + "." + printable(sk);
         const int vline = static_cast<int>(value.source().begin.line);
-        const KeySpec* spec = scene_io::find_key(k, sk);
+        const SceneField* spec = find_scene_field(k, sk);
         if (!spec) return fail(vline, full + ": " + unknown_key_error(k, sk));
         if (auto r = apply_key(s, *spec, value, material); !r.empty())
           return fail(vline, full + ": " + r);
@@ -173,7 +171,7 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     const auto it = lines.find(key);
     return it == lines.end() ? 0 : it->second;
   };
-  if (auto r = scene_io::apply_material(s, material); !r.empty())
+  if (auto r = apply_material(s, material); !r.empty())
     return fail(line_of(r.substr(0, r.find(':'))), r);
   for (const auto& body : bodies)  // a problem with a body blames its key's last table
     for (const auto& [key, line] : body.key_lines) lines["body." + key] = line;
@@ -231,9 +229,9 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   const size_t dot = lhs.find('.');
   if (dot == std::string::npos) return where + ": expected section.key=value";
   const std::string section = lhs.substr(0, dot), key = lhs.substr(dot + 1);
-  if (!scene_io::find_section(section))
+  if (!find_scene_section(section))
     return where + ": " + printable(section) + ": " + unknown_section_error(section);
-  const KeySpec* spec = scene_io::find_key(section, key);
+  const SceneField* spec = find_scene_field(section, key);
   if (!spec) return where + ": " + printable(lhs) + ": " + unknown_key_error(section, key);
   // The value in TOML syntax; failing that, a bare word stands for a string
   // (--set material.model=linear).
@@ -265,7 +263,7 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   MaterialInput material;
   if (auto r = apply_key(candidate, *spec, *parsed.get("v"), material); !r.empty())
     return where + ": " + lhs + ": " + r;
-  if (auto r = scene_io::apply_material(candidate, material); !r.empty()) return where + ": " + r;
+  if (auto r = apply_material(candidate, material); !r.empty()) return where + ": " + r;
   if (const auto problem = find_scene_problem(candidate))
     return where + ": " + blame(*problem, [&](const std::string& k) { return k == lhs; }).message;
   s = std::move(candidate);
@@ -276,11 +274,11 @@ std::string scene_to_toml(const SceneDef& s) {
   // Every key the scene keeps is written, and a switched-off term keeps its values under
   // `enabled = false`, so that parsing the text gives back exactly this scene.
   std::string out = "name = " + toml_string(s.name) + "\n";
-  for (const auto& section : scene_io::section_table()) {
+  for (const auto& section : scene_sections()) {
     out += "\n[" + std::string(section.name) + "]\n";
-    for (const auto& k : scene_io::key_table())
+    for (const auto& k : scene_fields())
       if (k.kept && std::string_view(k.section) == section.name)
-        out += std::string(k.key) + " = " + k.write(s) + "\n";
+        out += std::string(k.key) + " = " + scene_io::write_field(k, s) + "\n";
   }
   return out + scene_io::body_tables_to_toml(s);
 }

@@ -1,7 +1,9 @@
 #include "tests/scene_io/scene_keys_doc.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include "scene_io/scene_keys.h"
 
@@ -69,9 +71,27 @@ std::string scene_keys_markdown() {
   return md + "\n" + kSceneKeysEnd + "\n";
 }
 
-std::string generated_block(const std::string& document) {
-  const size_t begin = document.find(kSceneKeysBegin);
-  const size_t end = document.find(kSceneKeysEnd);
+std::string fuzz_dictionary_block() {
+  std::vector<std::string> tokens;
+  auto add = [&](const std::string& token) {
+    if (std::find(tokens.begin(), tokens.end(), token) == tokens.end()) tokens.push_back(token);
+  };
+  for (const auto& section : scene_section_info()) add("[" + section.name + "]");
+  add("[[body]]");
+  add("name");
+  for (const auto& k : scene_key_info()) add(k.key);
+  for (const auto& k : body_key_info()) add(k.key);
+  for (const auto& k : scene_key_info())
+    for (const auto& c : k.choices) add("\\\"" + c + "\\\"");  // \"c\": a TOML string
+  std::string out = std::string(kFuzzDictBegin) + "\n";
+  for (const auto& t : tokens) out += "\"" + t + "\"\n";
+  return out + kFuzzDictEnd + "\n";
+}
+
+std::string generated_block(const std::string& document, const char* begin_marker,
+                            const char* end_marker) {
+  const size_t begin = document.find(begin_marker);
+  const size_t end = document.find(end_marker);
   if (begin == std::string::npos || end == std::string::npos || end < begin) return "";
   const size_t stop = document.find('\n', end);
   return document.substr(begin, (stop == std::string::npos ? document.size() : stop + 1) - begin);

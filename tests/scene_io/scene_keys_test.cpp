@@ -1,6 +1,6 @@
-// The key table (scene_io/key_table.cpp) against what is derived from it or must agree
-// with it: docs/scene-keys.md, the fuzz dictionary and seeds, the core's value bounds, the
-// choices of string keys.
+// The scene field table (core/scene/scene_fields.h) against what is derived from it or must
+// agree with it: docs/scene-keys.md, the fuzz dictionary and seeds, the value bounds the
+// reader enforces, the choices of string keys, needs_new_mesh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,10 +12,13 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "scene/scene_fields.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
+#include "simulation.h"
 #include "tests/scene_io/scene_keys_doc.h"
 
 namespace invfree {
@@ -34,6 +37,15 @@ TEST(SceneKeysDoc, MatchesTheParsersKeyTable) {
          "  build/release/tests/invfree_scene_keys_doc docs/scene-keys.md";
   for (const auto& key : scene_keys())
     EXPECT_NE(doc.find("| `" + key.substr(key.find('.') + 1) + "` |"), std::string::npos) << key;
+}
+
+// The dictionary's generated block is the field table's, as invfree_scene_keys_doc writes it.
+TEST(SceneKeysDoc, FuzzDictionaryBlockMatchesTheFieldTable) {
+  const std::string dict = read_source_file("tests/fuzz/scene.dict");
+  EXPECT_EQ(test::generated_block(dict, test::kFuzzDictBegin, test::kFuzzDictEnd),
+            test::fuzz_dictionary_block())
+      << "tests/fuzz/scene.dict is out of date; regenerate its block with\n"
+         "  build/release/tests/invfree_scene_keys_doc tests/fuzz/scene.dict";
 }
 
 // Every section header, key and string value of the table is a token of the fuzz
@@ -124,6 +136,60 @@ TEST(SceneKeys, EveryChoiceReadsAndWritesBack) {
           << c << "\n"
           << scene_to_toml(s);
     }
+  }
+}
+
+// A value of the field's type other than `v` (not necessarily a valid one).
+FieldValue other_value(const SceneField& f, const FieldValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) return *d + 1.0;
+  if (const auto* i = std::get_if<long long>(&v)) return *i + 1;
+  if (const auto* u = std::get_if<unsigned long long>(&v)) return static_cast<long long>(*u + 1);
+  if (const auto* b = std::get_if<bool>(&v)) return !*b;
+  if (const auto* c = std::get_if<std::string>(&v)) {
+    for (const auto& name : f.choices())
+      if (name != *c) return name;
+  }
+  return Vec2(std::get<Vec2>(v) + Vec2(1.0, 1.0));
+}
+
+// needs_new_mesh is the table's column: changing one field rebuilds exactly when its row says
+// so, and the rows that say so are the mesh, the masses and the unknowns (the ceiling's).
+TEST(SceneKeys, NeedsNewMeshIsTheTablesColumn) {
+  const SceneDef base = *load_builtin_scene("compress").scene;
+  std::set<std::string> rebuilding;
+  for (const SceneField& f : scene_fields()) {
+    SceneDef next = base;
+    if (f.set) {
+      ASSERT_EQ(f.set(next, other_value(f, f.get(base))), "") << f.name();
+    } else if (f.kept) {  // mu, lambda
+      next.lame = {base.lame.mu * 2.0, base.lame.lambda * 2.0};
+    } else {
+      continue;
+    }
+    EXPECT_EQ(needs_new_mesh(base, next), f.new_mesh) << f.name();
+    if (f.new_mesh) rebuilding.insert(f.name());
+  }
+  EXPECT_EQ(rebuilding, (std::set<std::string>{"mesh.side", "mesh.n_seg", "mesh.density",
+                                               "mesh.mass", "mesh.jitter", "mesh.seed",
+                                               "ceiling.enabled", "mass_spring.enabled",
+                                               "fixed.enabled", "fixed.corners", "fixed.box_min",
+                                               "fixed.box_max"}));
+  // [[body]]: a body more or fewer, or its square, place or velocity; not its material.
+  SceneDef two = base;
+  two.bodies = {BodyDef{}, BodyDef{}};
+  two.bodies[1].offset = Vec2(2.0, 0.0);
+  EXPECT_TRUE(needs_new_mesh(base, two));
+  SceneDef changed = two;
+  changed.bodies[0].lame = Lame{1e4, 1e4};
+  EXPECT_FALSE(needs_new_mesh(two, changed));
+  for (const BodyField& f : body_fields()) {
+    if (!f.set) continue;
+    changed = two;
+    f.set(changed.bodies[1], f.type == FieldType::Integer ? FieldValue(7LL)
+                             : f.type == FieldType::Number ? FieldValue(0.5)
+                                                           : FieldValue(Vec2(3.0, 1.0)));
+    EXPECT_EQ(needs_new_mesh(two, changed), f.new_mesh) << f.key;
+    EXPECT_TRUE(f.new_mesh) << f.key;
   }
 }
 
