@@ -1,5 +1,6 @@
 #include "app/scene_options.h"
 
+#include "scene/scene_fields.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 
@@ -30,8 +31,11 @@ std::string mixed_material_error(const std::vector<std::string>& overrides) {
   std::string young, lame;
   for (const std::string& o : overrides) {
     const std::string key = override_key(o);
-    if (key == "material.E" || key == "material.nu") young = young.empty() ? key : young;
-    if (key == "material.mu" || key == "material.lambda") lame = lame.empty() ? key : lame;
+    const SceneField* f = find_scene_field(key);
+    if (!f || !f->input) continue;  // the material keys' pairs (scene/scene_fields.h)
+    const bool is_young = f->input == &MaterialInput::E || f->input == &MaterialInput::nu;
+    std::string& first = is_young ? young : lame;
+    if (first.empty()) first = key;
   }
   if (young.empty() || lame.empty()) return "";
   return "--set " + young + " and --set " + lame +

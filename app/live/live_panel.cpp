@@ -119,7 +119,6 @@ bool slider_with_readable_value(const char* label, float t, const std::string& t
 // A log slider over a material parameter (LogSlider): dragged or typed, *value is the
 // value asked for.
 constexpr const char* kMassSpringLabel = "mass-spring";
-constexpr double kSpringStiffnessLo = 1e1, kSpringStiffnessHi = 1e8;  // N/m
 
 bool log_slider(PanelState& ps, const char* id, const char* label, const LogSlider& map,
                 double current, double* value, const char* unit = "Pa") {
@@ -246,10 +245,10 @@ void scene_section(LiveController& lc, PanelState& ps) {
 void material_section(LiveController& lc, PanelState& ps) {
   SceneDef next = lc.settings();
   if (next.has_mass_spring) {  // the springs' k instead of the triangles' material
-    const LogSlider k_map{kSpringStiffnessLo, kSpringStiffnessHi};
+    const LogSlider k_map{kSpringStiffnessRange.lo, kSpringStiffnessRange.hi};
     double k = 0.0;
     if (log_slider(ps, "##k", "k", k_map, next.spring_stiffness, &k, "N/m")) {
-      next.spring_stiffness = std::clamp(k, kSpringStiffnessLo, kSpringStiffnessHi);
+      next.spring_stiffness = std::clamp(k, kSpringStiffnessRange.lo, kSpringStiffnessRange.hi);
       if (next.spring_stiffness != k) lc.note = "k clamped to the slider's range";
       apply(lc, next);
     }

@@ -6,6 +6,11 @@
 
 namespace invfree::live {
 
+Range slider_range(std::string_view key) {
+  const SceneField* f = find_scene_field(key);
+  return f ? Range{f->slider.lo, f->slider.hi} : Range{0.0, 0.0};
+}
+
 std::string format_value(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.4g", v);

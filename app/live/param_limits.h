@@ -8,8 +8,10 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "material/material.h"
+#include "scene/scene_fields.h"
 
 namespace invfree::live {
 
@@ -17,19 +19,27 @@ struct Range {
   double lo, hi;
 };
 
-// Lame parameters (Pa). mu > 0 is required by every model; lambda >= 0 (nu >= 0). The
-// upper ends are where the `compress` demo's penalty ceiling still makes progress (much
-// stiffer squares hit Newton's iteration cap under it: the run pauses with a banner).
-constexpr Range kMuRange{1e2, 1e7};
-constexpr Range kLambdaRange{0.0, 1e8};
+// The sliders' ranges of scene keys: the "slider range" of each key's row in the scene field
+// table (core/scene/scene_fields.cpp says why each is narrower than the key's valid range).
+// {0, 0} for a key without one.
+Range slider_range(std::string_view key);
+
+inline const Range kMuRange = slider_range("material.mu");          // Pa
+inline const Range kLambdaRange = slider_range("material.lambda");  // Pa
 constexpr double kLambdaLogMin = 1e2;  // lambda's slider: 0 at its left end, then log from here
-constexpr Range kPoissonRange{0.0, 0.499};
-constexpr Range kTimeStepRange{1e-4, 0.05};  // h, s
-constexpr Range kTolRange{1e-5, 1.0};        // Newton tolerance on |p|_inf / h, m/s
-constexpr Range kFrictionRange{0.0, 2.0};
-constexpr Range kCeilingSpeedRange{0.0, 5.0};   // m/s, downwards
-constexpr Range kPullStiffnessRange{1e1, 1e7};  // N/m of the grab spring
-constexpr int kMinSegments = 1;
+inline const Range kPoissonRange = slider_range("material.nu");
+inline const Range kTimeStepRange = slider_range("time.h");  // s
+inline const Range kTolRange = slider_range("time.tol");     // Newton tolerance on |p|_inf / h, m/s
+inline const Range kFrictionRange = slider_range("ground.friction");
+// The panel's "ceiling speed" is the downward speed, -ceiling.velocity (m/s).
+// (0.0 - x: a velocity of 0 is a speed of +0, not -0.)
+inline const Range kCeilingSpeedRange = {0.0 - slider_range("ceiling.velocity").hi,
+                                         0.0 - slider_range("ceiling.velocity").lo};
+inline const Range kSpringStiffnessRange = slider_range("mass_spring.stiffness");  // N/m
+// n_seg's slider starts at the key's smallest value; its end is measured (PanelState).
+inline const int kMinSegments = static_cast<int>(find_value_bounds("mesh.n_seg")->lo);
+// Not a scene key: the stiffness of the spring the mouse pulls with (N/m).
+constexpr Range kPullStiffnessRange{1e1, 1e7};
 
 struct Clamped {
   double value;

@@ -42,17 +42,7 @@ std::string format_time(double t, double h) {
 }
 
 const char* model_display_name(Model m) {
-  switch (m) {
-    case Model::NeoHookean:
-      return "neo-Hookean";
-    case Model::Linear:
-      return "linear";
-    case Model::Arap:
-      return "ARAP";
-    case Model::StableNeoHookean:
-      return "stable neo-Hookean";
-  }
-  return "?";
+  return model_label(m);  // the model's own label (material/models.h)
 }
 
 std::vector<ColorBarTick> color_bar_ticks(double range) {

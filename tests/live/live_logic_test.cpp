@@ -123,6 +123,34 @@ TEST(LiveParams, CeilingStopRange) {
   EXPECT_DOUBLE_EQ(r.hi, 0.6);
 }
 
+// The sliders' ranges are the scene field table's "slider range" column: each lies inside
+// its key's valid range, and they are the ranges the panel has always had.
+TEST(LiveParams, SliderRangesAreTheFieldTablesAndLieInsideTheValidRanges) {
+  int sliders = 0;
+  for (const SceneField& f : scene_fields()) {
+    if (!f.slider.any()) continue;
+    ++sliders;
+    EXPECT_TRUE(f.bounds.contains(f.slider.lo)) << f.name();
+    EXPECT_TRUE(f.bounds.contains(f.slider.hi)) << f.name();
+    const Range r = slider_range(f.name());
+    EXPECT_EQ(r.lo, f.slider.lo);
+    EXPECT_EQ(r.hi, f.slider.hi);
+  }
+  EXPECT_EQ(sliders, 8);
+  auto same = [](Range a, double lo, double hi) { return a.lo == lo && a.hi == hi; };
+  EXPECT_TRUE(same(kMuRange, 1e2, 1e7));
+  EXPECT_TRUE(same(kLambdaRange, 0.0, 1e8));
+  EXPECT_TRUE(same(kPoissonRange, 0.0, 0.499));
+  EXPECT_TRUE(same(kTimeStepRange, 1e-4, 0.05));
+  EXPECT_TRUE(same(kTolRange, 1e-5, 1.0));
+  EXPECT_TRUE(same(kFrictionRange, 0.0, 2.0));
+  EXPECT_TRUE(same(kCeilingSpeedRange, 0.0, 5.0));
+  EXPECT_FALSE(std::signbit(kCeilingSpeedRange.lo));  // "[0, 5]" in its note, not "[-0, 5]"
+  EXPECT_TRUE(same(kSpringStiffnessRange, 1e1, 1e8));
+  EXPECT_EQ(kMinSegments, 1);
+  EXPECT_TRUE(same(slider_range("mesh.side"), 0.0, 0.0));  // no slider
+}
+
 TEST(LiveSlider, LogMappingRoundTripsAndIsLogarithmic) {
   const LogSlider s{1e2, 1e8};
   EXPECT_DOUBLE_EQ(s.value(0.0), 1e2);
@@ -166,7 +194,7 @@ TEST(LiveStats, HistoryKeepsTheLastValuesOldestFirst) {
   EXPECT_TRUE(h.values().empty());
 }
 
-TEST(LiveKeys, TheIssuesKeysAreBoundAndListed) {
+TEST(LiveKeys, KeysMapToTheirActionsOnceAndAreInTheHelp) {
   EXPECT_EQ(action_for_key(GLFW_KEY_SPACE, 0), Action::TogglePlay);
   EXPECT_EQ(action_for_key(GLFW_KEY_S, 0), Action::Step);
   EXPECT_EQ(action_for_key(GLFW_KEY_R, 0), Action::Reset);

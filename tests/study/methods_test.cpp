@@ -73,7 +73,7 @@ TEST(Methods, TheStabilitySweepAddsTheSpringsAfterTheStudysMethods) {
   EXPECT_EQ(method_model(*find_method("lecture")), "neo-hookean");
 }
 
-TEST(Methods, SettingsAreTheIssuesFamilies) {
+TEST(Methods, EachMethodSetsItsModelSolverAndIntegrator) {
   auto with = [](const char* name, bool substeps = false) {
     SceneDef s;
     EXPECT_EQ(apply_method(*find_method(name), s, substeps), "");
