@@ -8,8 +8,9 @@
 //   contact        the planes' barriers (potential/plane_barrier.h) and, with
 //                  self-contact, the point-edge barriers (potential/self_contact_barrier.h);
 //                  not scaled by h^2 as in the step's potential
-// The step's incremental potential (StepReport::energy) is another quantity: it adds the
-// inertia term and scales the rest by h^2.
+// Each is the sum of the terms of its kind (potential/term.h's EnergyKind) in the step's
+// list of terms, built by core/make_terms.cpp at the current state; friction and the
+// control terms (the ceiling's penalty, the grab) are not energies of the bodies.
 #pragma once
 
 #include "simulation.h"
@@ -21,6 +22,8 @@ struct EnergyReport {
   double total() const { return kinetic + elastic + gravitational + contact; }
 };
 
-EnergyReport energy_report(const Simulation& sim);
+enum class EnergyReportParts { All, WithoutContact };
+EnergyReport energy_report(const Simulation& sim,
+                           EnergyReportParts parts = EnergyReportParts::All);
 
 }  // namespace invfree

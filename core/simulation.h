@@ -24,7 +24,9 @@ struct StepReport {
   StepStatus status = StepStatus::Ok;
   int newton_iterations = 0;
   double residual = 0.0;
-  double energy = 0.0;   // incremental potential at the accepted state
+  // Implicit Euler: the incremental potential at the accepted state. Symplectic Euler:
+  // total_energy (kinetic + elastic + gravity) at the step's start.
+  double energy = 0.0;
   double wall_ms = 0.0;  // time spent in the step
   std::string message;   // empty when ok
   // Where the step's time went (ms, steady clock; the rest of wall_ms is the warm start,
@@ -35,8 +37,8 @@ struct StepReport {
   double factor_ms = 0.0;
   double solve_ms = 0.0;
   double line_search_ms = 0.0;
-  // Of the above and the rest: self-contact's broad phase, CCD, energy and derivatives, and
-  // its intersection check (0 without self-contact).
+  // Of the above and the rest: self-contact's broad phase, CCD, energy, derivatives and
+  // Hessian blocks, and its intersection check (0 without self-contact).
   double self_contact_ms = 0.0;
   int factorizations = 0;
   int pcg_iterations = 0;

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "app/format_number.h"
-#include "potential/plane_barrier.h"
+#include "make_terms.h"
 
 namespace invfree {
 
@@ -57,10 +57,8 @@ bool energy_exceeds_budget(double energy, double floor, double initial, double c
 }
 
 double ceiling_push(const Simulation& sim) {
-  const SceneDef& s = sim.scene;
-  if (!s.has_ceiling) return 0.0;
-  return invfree::ceiling_push(sim.x.data(), sim.mesh.node_count(), sim.ceiling_y,
-                               BarrierParams{s.dhat, s.kappa, s.contact_area()});
+  if (!sim.scene.has_ceiling) return 0.0;
+  return ceiling_barrier_of(sim).push(sim.x.data(), sim.mesh.node_count(), sim.ceiling_y);
 }
 
 double gravity_floor(const Simulation& sim) {

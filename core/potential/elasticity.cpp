@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "potential/work_blocks.h"
+
 namespace invfree {
 
 namespace {
@@ -34,6 +36,55 @@ void add_elastic_gradient(const Mesh& mesh, Model model, const Lame& lame, const
       for (int a = 0; a < 3; ++a) g.segment<2>(2 * tri[a]) += gt.segment<2>(2 * a);
     }
   });
+}
+
+double Elasticity::value(const TermPoint& at, double scale) const {
+  const int nt = at.mesh.triangle_count();
+  const BlockSplit tri = split_blocks(nt, kTriangleBlock, kMaxBlocks);
+  double partial[kMaxBlocks];
+  visit_model(model, [&](auto m) {
+    run_blocks(tri.blocks, [&](int b) {
+      partial[b] = elastic_energy_range<decltype(m)>(at.mesh, lame, at.z.data(), tri.begin(b),
+                                                     tri.end(b, nt), triangle_lame);
+    });
+  });
+  double elastic = 0.0;
+  for (int b = 0; b < tri.blocks; ++b) elastic += partial[b];
+  return scale * elastic;
+}
+
+void Elasticity::add_derivatives(const TermPoint& at, double scale, Assembly& out) const {
+  SparseHessian& hess = out.hessian;
+  const bool parallel = at.mesh.triangle_count() >= kParallelTriangles;
+  visit_model(model, [&](auto m) {
+    using M = decltype(m);
+    for (int colour = 0; colour < hess.colour_count(); ++colour) {
+      const int first = hess.colour_begin[colour], count = hess.colour_begin[colour + 1] - first;
+      auto chunk = [&](int k) {
+        const int begin = hess.chunk_order[first + k] * hess.chunk_size;
+        const int end = std::min(at.mesh.triangle_count(), begin + hess.chunk_size);
+        add_elastic_derivatives_range<M>(at.mesh, *this, at.z.data(), begin, end, scale,
+                                         out.gradient.data(), hess);
+      };
+      if (parallel) {
+        thread_pool().run(count, chunk);
+      } else {
+        for (int k = 0; k < count; ++k) chunk(k);
+      }
+    }
+  });
+}
+
+double Elasticity::max_step(const TermPoint& at, const VecX& dir, double alpha) const {
+  if (!filters_inversions()) return alpha;
+  return std::min(alpha, inversion_free_step(at.mesh, at.z, dir));
+}
+
+void Elasticity::add_explicit_force(const TermPoint& at, VecX& gradient) const {
+  const std::span<const Lame> own =
+      triangle_lame ? std::span<const Lame>(triangle_lame, at.mesh.triangle_count())
+                    : std::span<const Lame>();
+  add_elastic_gradient(at.mesh, model, lame, at.z, 1.0, gradient, own);
 }
 
 double smallest_positive_root(double a, double b, double c) {

@@ -2,8 +2,9 @@
 // model (core/material/: Psi, P = dPsi/dF and the projected dP/dF per model, the
 // per-triangle chain rule in triangle_elasticity.h), and its largest feasible step, the
 // inversion-free filter of lecture 9 ("Inversion-Free Line Search Filtering").
-// The sum over triangles runs in blocks and colours (incremental_potential.cpp); this
-// file gives the per-range pieces for one model type M, and model-dispatched wrappers.
+// A whole-mesh term (term.h) of kind Elastic: its energy sums over blocks of triangles,
+// its derivatives over colours of triangles that share no node (no locks), its filter is
+// the inversion-free step; the per-range pieces for one model type M are below.
 #pragma once
 
 #include <algorithm>
@@ -12,12 +13,15 @@
 
 #include "linalg/sparse_hessian.h"
 #include "material/models.h"
+#include "potential/term.h"
 #include "material/triangle_elasticity.h"
 #include "scene/mesh.h"
 
 namespace invfree {
 
 struct Elasticity {
+  static constexpr EnergyKind kind = EnergyKind::Elastic;
+  static constexpr bool scaled_by_h2 = true;
   Model model = Model::NeoHookean;
   Lame lame;
   HessianProjection projection = HessianProjection::Diagonal;
@@ -31,6 +35,11 @@ struct Elasticity {
   bool filters_inversions() const {
     return on && inversion_filter && !model_allows_inversion(model);
   }
+
+  double value(const TermPoint& at, double scale) const;
+  void add_derivatives(const TermPoint& at, double scale, Assembly& out) const;
+  double max_step(const TermPoint& at, const VecX& dir, double alpha) const;
+  void add_explicit_force(const TermPoint& at, VecX& gradient) const;
 };
 
 inline Mat2 triangle_deformation_gradient(const Mesh& mesh, const double* x, int t) {

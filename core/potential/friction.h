@@ -5,7 +5,8 @@
 //   D(u) = mu_f lambda f0(|u|),  D'(u) = mu_f lambda f1(|u|) sign(u),
 //   D''(u) = mu_f lambda (2/eps_u - 2|u|/eps_u^2) for |u| < eps_u, else 0  (>= 0).
 // The weight w_i = mu_f lambda_i is 0 for a node farther than dhat from the ground.
-// Explicit integration uses the same law on the current slip h v (friction_force).
+// Explicit integration uses the same law on the current slip h v with the current normal
+// force (add_explicit_force).
 // On a sloped ground the slip is u = t.(x_i - x_i^n) along the plane's unit tangent t,
 // gradient D'(u) t and Hessian D''(u) t t^T (the tutorial's T = I - n n^T in 2D); the
 // horizontal ground keeps u = x_i - x_i^n exactly.
@@ -16,6 +17,8 @@
 
 #include "potential/barrier.h"
 #include "potential/node_term.h"
+#include "potential/plane_barrier.h"
+#include "potential/term.h"
 #include "types.h"
 
 namespace invfree {
@@ -46,11 +49,14 @@ inline double friction_weight(double mu_f, double gap, const BarrierParams& barr
 }
 
 struct GroundFriction {
+  static constexpr EnergyKind kind = EnergyKind::Friction;
   bool on = false;
   std::vector<double> weight;  // mu_f lambda_i per node, lagged
   double eps_u = 0.0;          // eps_v h
   bool sloped = false;
   Vec2 tangent = Vec2(1.0, 0.0);  // unit; read only when sloped
+  double mu = 0.0;                // mu_f
+  GroundBarrier ground;           // the normal force's barrier
 
   double slip(const NodeState& s) const {
     return sloped ? tangent.x() * (s.x - s.x_start) + tangent.y() * (s.y - s.y_start)
@@ -72,6 +78,15 @@ struct GroundFriction {
       return;
     }
     add_along(d, tangent.x(), tangent.y(), d1, d2);
+  }
+  // Explicit integration: the force on the current slip h v, with the current normal force.
+  void add_explicit_force(const NodeState& s, const Vec2& v, double h, NodeDerivatives& d) const {
+    const double gap = ground.gap(s.x, s.y);
+    if (!(gap < ground.barrier.dhat)) return;
+    const double u = sloped ? h * tangent.dot(v) : h * v.x();
+    const double f = friction_derivative(u, friction_weight(mu, gap, ground.at(s.index)), eps_u);
+    d.gx += sloped ? f * tangent.x() : f;
+    if (sloped) d.gy += f * tangent.y();
   }
 };
 

@@ -2,11 +2,13 @@
 #pragma once
 
 #include "potential/node_term.h"
+#include "potential/term.h"
 #include "types.h"
 
 namespace invfree {
 
 struct Gravity {
+  static constexpr EnergyKind kind = EnergyKind::Gravity;
   bool on = false;
   Vec2 g = Vec2::Zero();
 

@@ -1,23 +1,24 @@
 // The incremental potential of one implicit Euler step (lecture 9's demo, IPC's form):
 //   E(x, c) = 1/2 |x - x_tilde|^2_M                                 inertia.h
-//           + h^2 [ sum_t area_t Psi(F_t)                           elasticity.h
-//                   - sum_i m_i g.x_i                               gravity.h
+//           + h^2 [ sum_i -m_i g.x_i                                gravity.h
 //                   + sum_i b(y_i - y_ground) + sum_i b(c - y_i)    plane_barrier.h
 //                   + sum_i D_i(x_i)                                friction.h
+//                   + sum_t area_t Psi(F_t)                         elasticity.h
 //                   + k_pull/2 |x_p - target|^2                     pull_spring.h
-//                   + sum_s 1/2 k l^2 (|d_s|^2/l^2 - 1)^2 ]         mass_spring.h
+//                   + sum_s 1/2 k l^2 (|d_s|^2/l^2 - 1)^2           mass_spring.h
+//                   + sum_pairs B(D(node, edge)) + lagged friction ] self_contact.h
 //           + 1/2 k (c - c_target)^2                                ceiling_penalty.h
-//           + h^2 [ sum_pairs B(D(node, edge)) + lagged friction ]  self_contact.h
 // over the node coordinates x (2N) and, when the scene has a ceiling, its height c as one
-// extra unknown. Each term is one file of free functions and is evaluated only when the
-// scene switches it on; the terms are listed once, in for_each_node_term below and in the
-// sums of incremental_potential.cpp. A mass-spring scene (the course's chapters 1-5) has
-// springs instead of the triangles' elasticity; fixed nodes (fixed_dofs.h) are eliminated
-// from the gradient and Hessian.
-// Inputs: a StepProblem (everything frozen for the step) and z = [x; c].
+// extra unknown. Every term meets the contract of term.h; StepProblem lists them once
+// (for_each_node_term, for_each_mesh_term: the order every sum adds them in), and the sums
+// (term_sums.h) are written once over that list. The node terms are fused with inertia in
+// one loop over the nodes. A mass-spring scene (the course's chapters 1-5) has springs
+// instead of the triangles' elasticity; fixed nodes (fixed_dofs.h) are eliminated from the
+// gradient and Hessian. core/make_terms.cpp builds the terms from a scene.
+// Inputs: a StepProblem (everything frozen for the step), its caches and z = [x; c].
 // Outputs: the value (+infinity outside the feasible set: an inverted neo-Hookean
 // triangle or a node on or through a plane), the gradient and projected Hessian, and the
-// largest feasible step along a direction (the terms' filters).
+// largest safe step along a direction (the terms' filters).
 #pragma once
 
 #include <vector>
@@ -33,6 +34,7 @@
 #include "potential/plane_barrier.h"
 #include "potential/pull_spring.h"
 #include "potential/self_contact.h"
+#include "potential/step_caches.h"
 #include "scene/mesh.h"
 
 namespace invfree {
@@ -44,16 +46,32 @@ struct StepProblem {
   VecX x_tilde;  // x^n + h v^n (2N): inertia's target
   VecX x_start;  // x^n (2N): lagged friction's reference
 
-  Elasticity elasticity;
+  // The terms.
   Gravity gravity;
   GroundBarrier ground;
   GroundFriction friction;
   CeilingBarrier ceiling;  // on: the ceiling's height is the unknown z[2N]
+  Elasticity elasticity;
   CeilingPenalty ceiling_penalty;
   PullSpring pull;
   MassSpring springs;
+  SelfContact self_contact;
+  // A constraint, not a term: eliminated after the terms are assembled.
   FixedDofs fixed;
-  SelfContact self_contact;  // on: its candidates come from the line search's filter
+
+  // THE list, in the order every sum adds the terms.
+  template <class Fn>
+  void for_each_node_term(Fn&& fn) const {
+    node_terms(*this, fn);
+  }
+  template <class Fn>
+  void for_each_mesh_term(Fn&& fn) const {
+    mesh_terms(*this, fn);
+  }
+  template <class Fn>
+  void for_each_mesh_term(Fn&& fn) {
+    mesh_terms(*this, fn);
+  }
 
   int node_count() const { return mesh->node_count(); }
   int dof_count() const { return 2 * node_count() + (ceiling.on ? 1 : 0); }
@@ -66,26 +84,45 @@ struct StepProblem {
             ceiling.on ? z[2 * node_count()] : 0.0,
             x_start[2 * i + 1]};
   }
+
+ private:
+  template <class Self, class Fn>
+  static void node_terms(Self& p, Fn& fn) {
+    fn(p.gravity);
+    fn(p.ground);
+    fn(p.friction);
+    fn(p.ceiling);
+  }
+  template <class Self, class Fn>
+  static void mesh_terms(Self& p, Fn& fn) {
+    fn(p.elasticity);
+    fn(p.ceiling_penalty);
+    fn(p.pull);
+    fn(p.springs);
+    fn(p.self_contact);
+  }
 };
 
-// The per-node terms scaled by h^2, in the order they are summed.
-template <class Fn>
-void for_each_node_term(const StepProblem& p, Fn&& fn) {
-  fn(p.gravity);
-  fn(p.ground);
-  fn(p.friction);
-  fn(p.ceiling);
-}
+double ip_energy(const StepProblem& p, StepCaches& caches, const VecX& z);
+// A term's Hessian blocks outside the pattern rebuild it (hessian.pattern_version
+// changes; the solve redoes its symbolic analysis).
+void ip_gradient_hessian(const StepProblem& p, StepCaches& caches, const VecX& z,
+                         VecX& gradient, SparseHessian& hessian);
+// The largest alpha in [0, 1] that every term's filter allows along dir (the planes, the
+// inversion filter where the model needs det F > 0, self-contact's CCD).
+double largest_safe_step(const StepProblem& p, StepCaches& caches, const VecX& z,
+                         const VecX& dir);
+// The largest fraction of the straight motion z -> trial that the stateful filters allow.
+double path_step(const StepProblem& p, StepCaches& caches, const VecX& z, const VecX& trial);
+// The terms' preparation at Newton's start point (self-contact's candidates there).
+void begin_terms(const StepProblem& p, StepCaches& caches, const VecX& z);
 
-double ip_energy(const StepProblem& p, const VecX& z);
-// With self-contact on, a contact block outside the Hessian's pattern rebuilds the pattern
-// (hessian.pattern_version changes; the caller redoes the symbolic analysis).
-void ip_gradient_hessian(const StepProblem& p, const VecX& z, VecX& gradient,
-                         SparseHessian& hessian);
-// The largest alpha in (0, 1] that every filter allows along direction dir: the planes'
-// (plane_barrier.h) and, when the model needs det F > 0, the inversion filter's. The
-// self-contact CCD, which runs the broad phase, is applied on top by Newton
-// (solver/self_contact_filter.h).
-double largest_feasible_step(const StepProblem& p, const VecX& z, const VecX& dir);
+// The control terms (the ceiling's penalty), for Newton's stopping test.
+bool settle_controls(StepProblem& p, VecX& z);  // true when z changed
+bool controls_at_target(const StepProblem& p, const VecX& z, double tolerance);
+void tighten_controls(StepProblem& p);
+// A lower bound of the projected Hessian's eigenvalues (linalg/pcg.h's PCG bound):
+// inertia's smallest node mass, each control term's floor, 1 for eliminated rows.
+double hessian_lower_bound(const StepProblem& p, double min_node_mass);
 
 }  // namespace invfree

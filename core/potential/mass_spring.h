@@ -10,13 +10,15 @@
 // form. A spring of zero length has A = -2k I, projected to 0.
 // Inputs: the springs (rest data), k, node positions x (2 per node). Outputs: the energy,
 // gradient and (projected) Hessian scattered into a SparseHessian through 16 slots per
-// spring. Springs allow any deformation (no inversion filter).
+// spring. Springs allow any deformation (no inversion filter). A whole-mesh term
+// (term.h) of kind Elastic.
 #pragma once
 
 #include <array>
 #include <vector>
 
 #include "linalg/sparse_hessian.h"
+#include "potential/term.h"
 #include "scene/mesh.h"
 #include "types.h"
 
@@ -40,18 +42,32 @@ Vec2 spring_gradient(const Spring& s, double k, const Vec2& xi, const Vec2& xj);
 // A, or its PSD projection B when `project`.
 Mat2 spring_hessian_block(const Spring& s, double k, const Vec2& xi, const Vec2& xj, bool project);
 
+struct MassSpring;
+double mass_spring_energy(const MassSpring& m, const double* x);
+void add_mass_spring_gradient(const MassSpring& m, const double* x, double scale, double* g);
+void add_mass_spring_derivatives(const MassSpring& m, const double* x, double scale, double* g,
+                                 double* hessian_values);
+
 struct MassSpring {
+  static constexpr EnergyKind kind = EnergyKind::Elastic;
+  static constexpr bool scaled_by_h2 = true;
   bool on = false;
   double stiffness = 0.0;  // k
   bool project = true;     // the tutorial's make_PSD (off with solver.projection = "none")
   const std::vector<Spring>* springs = nullptr;
   const std::vector<int>* slots = nullptr;
+
+  double value(const TermPoint& at, double scale) const {
+    return scale * mass_spring_energy(*this, at.z.data());
+  }
+  void add_derivatives(const TermPoint& at, double scale, Assembly& out) const {
+    add_mass_spring_derivatives(*this, at.z.data(), scale, out.gradient.data(),
+                                out.hessian.values());
+  }
+  void add_explicit_force(const TermPoint& at, VecX& gradient) const {
+    add_mass_spring_gradient(*this, at.z.data(), 1.0, gradient.data());
+  }
 };
 
-double mass_spring_energy(const MassSpring& m, const double* x);
-// Adds scale * gradient to g and scale * Hessian to the matrix values.
-void add_mass_spring_gradient(const MassSpring& m, const double* x, double scale, double* g);
-void add_mass_spring_derivatives(const MassSpring& m, const double* x, double scale, double* g,
-                                 double* hessian_values);
 
 }  // namespace invfree

@@ -6,13 +6,15 @@
 // sees d <= 0 and every accepted state stays strictly between the planes.
 // The ground may be sloped (the course's 4_friction): unit normal n, through (0, y0), gap
 // d = n.(x_i - (0, y0)), gradient b' n, Hessian b'' n n^T. The horizontal ground keeps
-// its own arithmetic (d = y_i - y0), so its results are bit-identical to before.
+// the plain arithmetic d = y_i - y0 (no products with n = (0, 1)).
+// Both are node terms (term.h) of kind Contact; each plane's filter is its max_step.
 #pragma once
 
 #include <algorithm>
 
 #include "potential/barrier.h"
 #include "potential/node_term.h"
+#include "potential/term.h"
 #include "types.h"
 
 namespace invfree {
@@ -27,6 +29,7 @@ inline BarrierParams node_barrier(const BarrierParams& b, const double* node_are
 }
 
 struct GroundBarrier {
+  static constexpr EnergyKind kind = EnergyKind::Contact;
   bool on = false;
   double y0 = 0.0;
   BarrierParams barrier;
@@ -52,10 +55,24 @@ struct GroundBarrier {
     }
     add_along(d, normal.x(), normal.y(), d1, d2);
   }
+  // The largest step in [0, alpha] along p that keeps every node at least 10% of its gap.
+  double max_step(const VecX& x, int n, const VecX& p, double alpha) const {
+    for (int i = 0; i < n; ++i) {
+      const int y = 2 * i + 1;
+      if (sloped) {
+        const double closing = normal.x() * p[y - 1] + normal.y() * p[y];
+        if (closing < 0.0) alpha = std::min(alpha, 0.9 * gap(x[y - 1], x[y]) / -closing);
+      } else if (p[y] < 0.0) {
+        alpha = std::min(alpha, 0.9 * (x[y] - y0) / -p[y]);
+      }
+    }
+    return alpha;
+  }
 };
 
 // b(c - y_i): d/dy_i = -b', d/dc = b', Hessian b'' [1 -1; -1 1] on (y_i, c).
 struct CeilingBarrier {
+  static constexpr EnergyKind kind = EnergyKind::Contact;
   bool on = false;
   BarrierParams barrier;
   const double* node_area = nullptr;  // see node_barrier
@@ -75,40 +92,36 @@ struct CeilingBarrier {
       d.hyc -= d2;
     }
   }
-};
-
-// The largest alpha in (0, 1] that keeps every node at least 10% of its current gap from
-// each plane that is on, along direction p (2 per node, then the ceiling's own entry).
-inline double plane_step(const GroundBarrier& ground, const CeilingBarrier& ceiling, int node_count,
-                         const VecX& x, const VecX& p) {
-  double alpha = 1.0;
-  const int c = 2 * node_count;
-  for (int i = 0; i < node_count; ++i) {
-    const int y = 2 * i + 1;
-    if (ground.on && ground.sloped) {
-      const double closing = ground.normal.x() * p[y - 1] + ground.normal.y() * p[y];
-      if (closing < 0.0) alpha = std::min(alpha, 0.9 * ground.gap(x[y - 1], x[y]) / -closing);
-    } else if (ground.on && p[y] < 0.0) {
-      alpha = std::min(alpha, 0.9 * (x[y] - ground.y0) / -p[y]);
-    }
-    if (ceiling.on) {
+  // The largest step in [0, alpha] along p that keeps every node at least 10% of its gap
+  // below the ceiling (p's last entry moves the ceiling).
+  double max_step(const VecX& x, int n, const VecX& p, double alpha) const {
+    const int c = 2 * n;
+    for (int i = 0; i < n; ++i) {
+      const int y = 2 * i + 1;
       const double closing = p[c] - p[y];  // rate of change of the gap c - y_i
       if (closing < 0.0) alpha = std::min(alpha, 0.9 * (x[c] - x[y]) / -closing);
     }
+    return alpha;
   }
-  return alpha;
-}
+  // The body's push on the ceiling at height c (N, >= 0): the sum of the barrier's forces
+  // -b'(d) over the nodes closer than dhat below it. x: 2 per node (x, y).
+  double push(const double* x, int nodes, double c) const {
+    double total = 0.0;
+    for (int i = 0; i < nodes; ++i) {
+      const double d = c - x[2 * i + 1];
+      if (d > 0.0 && d < barrier.dhat) total -= barrier_derivative(d, at(i));
+    }
+    return total;
+  }
+};
 
-// The body's push on a ceiling at height ceiling_y (N, >= 0): the sum of the barrier's
-// forces -b'(d) over the nodes closer than dhat below it. x: 2 per node (x, y).
-inline double ceiling_push(const double* x, int nodes, double ceiling_y, const BarrierParams& b,
-                           const double* node_area = nullptr) {
-  double push = 0.0;
-  for (int i = 0; i < nodes; ++i) {
-    const double d = ceiling_y - x[2 * i + 1];
-    if (d > 0.0 && d < b.dhat) push -= barrier_derivative(d, node_barrier(b, node_area, i));
-  }
-  return push;
+// Both planes' filters from alpha = 1 (tests).
+inline double plane_step(const GroundBarrier& ground, const CeilingBarrier& ceiling, int nodes,
+                         const VecX& x, const VecX& p) {
+  double alpha = 1.0;
+  if (ground.on) alpha = ground.max_step(x, nodes, p, alpha);
+  if (ceiling.on) alpha = ceiling.max_step(x, nodes, p, alpha);
+  return alpha;
 }
 
 }  // namespace invfree

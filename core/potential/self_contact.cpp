@@ -1,23 +1,96 @@
 #include "potential/self_contact.h"
 
+#include <algorithm>
+
+#include "collision/broad_phase.h"
+#include "potential/step_caches.h"
+#include "solver/ccd.h"
+
 namespace invfree {
 
-double self_contact_value(const SelfContact& c, const VecX& z, const VecX& x_start) {
-  const SelfContactTimer timer{c.cache->ms};
-  double e = self_contact_energy(*c.boundary, *c.rest, c.cache->pairs, z, c.params);
-  if (!c.cache->friction.empty()) e += self_friction_energy(c.cache->friction, z, x_start, c.eps_u);
-  return e;
+namespace {
+
+// True when every node pair of every contact block is in the Hessian's pattern.
+bool blocks_fit(const std::vector<PointEdgeHessian>& blocks, const SparseHessian& hess) {
+  for (const PointEdgeHessian& b : blocks)
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j)
+        if (!has_node_block(hess, b.nodes[i], b.nodes[j])) return false;
+  return true;
 }
 
-void self_contact_derivatives(const SelfContact& c, const VecX& z, const VecX& x_start,
-                              double scale, VecX& gradient) {
-  const SelfContactTimer timer{c.cache->ms};
-  c.cache->hessians.clear();
-  add_self_contact_gradient_hessian(*c.boundary, *c.rest, c.cache->pairs, z, c.params, scale,
-                                    gradient, c.cache->hessians);
-  if (!c.cache->friction.empty())
-    add_self_friction_gradient_hessian(c.cache->friction, z, x_start, c.eps_u, scale, gradient,
-                                       c.cache->hessians);
+void list_block_pairs(const std::vector<PointEdgeHessian>& blocks,
+                      std::vector<std::array<int, 2>>& pairs) {
+  for (const PointEdgeHessian& b : blocks)
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j) {
+        const int u = b.nodes[i], v = b.nodes[j];
+        if (u != v) pairs.push_back({std::min(u, v), std::max(u, v)});
+      }
+}
+
+void scatter_blocks(const std::vector<PointEdgeHessian>& blocks, SparseHessian& hess) {
+  for (const PointEdgeHessian& b : blocks)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        add_node_block(hess, b.nodes[i], b.nodes[j], b.hessian.block<2, 2>(2 * i, 2 * j));
+}
+
+}  // namespace
+
+double SelfContact::value(const TermPoint& at, double scale) const {
+  SelfContactCache& cache = at.caches.contact;
+  const SelfContactTimer timer{cache.ms};
+  double e = self_contact_energy(*boundary, *rest, cache.pairs, at.z, params);
+  if (!cache.friction.empty()) e += self_friction_energy(cache.friction, at.z, at.x_start, eps_u);
+  return scale * e;
+}
+
+void SelfContact::add_derivatives(const TermPoint& at, double scale, Assembly& out) const {
+  SelfContactCache& cache = at.caches.contact;
+  const SelfContactTimer timer{cache.ms};
+  cache.hessians.clear();
+  add_self_contact_gradient_hessian(*boundary, *rest, cache.pairs, at.z, params, scale,
+                                    out.gradient, cache.hessians);
+  if (!cache.friction.empty())
+    add_self_friction_gradient_hessian(cache.friction, at.z, at.x_start, eps_u, scale,
+                                       out.gradient, cache.hessians);
+  if (!blocks_fit(cache.hessians, out.hessian)) {
+    out.outgrown = true;
+    list_block_pairs(cache.hessians, out.needed_pairs);
+    return;
+  }
+  scatter_blocks(cache.hessians, out.hessian);
+}
+
+double SelfContact::max_step(const TermPoint& at, const VecX& dir, double alpha) const {
+  if (!(alpha > 0.0)) return alpha;
+  SelfContactCache& cache = at.caches.contact;
+  const SelfContactTimer timer{cache.ms};
+  swept_point_edge_candidates(*boundary, at.z, dir, alpha, params.dhat, at.caches.grid,
+                              cache.pairs);
+  if (!ccd) return alpha;
+  return self_contact_step(*boundary, cache.pairs, at.z, dir, alpha);
+}
+
+double SelfContact::path_step(const TermPoint& at, const VecX& trial) const {
+  SelfContactCache& cache = at.caches.contact;
+  const SelfContactTimer timer{cache.ms};
+  if (!ccd) return 1.0;
+  at.caches.scratch = trial - at.z;
+  return self_contact_step(*boundary, cache.pairs, at.z, at.caches.scratch, 1.0);
+}
+
+void SelfContact::begin(const TermPoint& at) const {
+  const SelfContactTimer timer{at.caches.contact.ms};
+  point_edge_candidates(*boundary, at.z, params.dhat, at.caches.grid, at.caches.contact.pairs);
+}
+
+void SelfContact::add_energy_by_kind(const TermPoint& at, EnergyBins& bins) const {
+  const SelfContactCache& cache = at.caches.contact;
+  bins[EnergyKind::Contact] += self_contact_energy(*boundary, *rest, cache.pairs, at.z, params);
+  if (!cache.friction.empty())
+    bins[EnergyKind::Friction] += self_friction_energy(cache.friction, at.z, at.x_start, eps_u);
 }
 
 }  // namespace invfree

@@ -1,14 +1,16 @@
-// The self-contact term of the incremental potential, as StepProblem holds it: the IPC
-// point-edge barrier (self_contact_barrier.h) and lagged point-edge friction
-// (self_friction.h), summed over the current candidate pairs.
+// The self-contact term of the incremental potential: the IPC point-edge barrier
+// (self_contact_barrier.h) and lagged point-edge friction (self_friction.h), summed over
+// the current candidate pairs. A whole-mesh term (term.h) with a stateful filter.
 //
-// The candidate list is built by the broad phase (collision/broad_phase.h) in the line
-// search's filter (solver/self_contact_filter.h) for the whole segment z -> z + alpha_max p
-// it is asked about, with boxes around each node's and edge's path inflated by dhat; it
-// then serves the CCD, every energy evaluation of the line search and the gradient and
-// Hessian at the accepted point (inside those boxes). So the broad phase runs once per
-// Newton iteration, plus once at the start of a step for the starting point.
-// Pairs farther apart than dhat cost one distance evaluation.
+// The candidate list is built by the broad phase (collision/broad_phase.h) in the term's
+// filter (max_step) for the whole segment z -> z + alpha_max p it is asked about, with
+// boxes around each node's and edge's path inflated by dhat; the additive CCD (solver/ccd.h)
+// runs over it. The list then serves every energy evaluation of the line search and the
+// gradient and Hessian at the accepted point (inside those boxes). So the broad phase runs
+// once per Newton iteration, plus once at the start of a step (begin) for the starting
+// point. Pairs farther apart than dhat cost one distance evaluation.
+// The candidates, the lagged friction pairs, the Hessian blocks and the time spent live in
+// SelfContactCache (StepCaches::contact), which every call receives through TermPoint.
 // Inputs: the boundary and rest positions of every body (the per-pair dhat rule), the
 // scene's dhat, kappa, the lagged friction pairs, the candidates.
 // Outputs: value, gradient and the 6x6 Hessian blocks (mesh node triples).
@@ -19,15 +21,18 @@
 
 #include "potential/self_contact_barrier.h"
 #include "potential/self_friction.h"
+#include "potential/term.h"
 
 namespace invfree {
 
-// What the term keeps between calls of one step (owned by the workspace).
+// What the term keeps between calls of one step (StepCaches::contact).
 struct SelfContactCache {
   std::vector<PointEdgePair> pairs;        // the current candidates
   std::vector<SelfFrictionPair> friction;  // lagged at x^n
   std::vector<PointEdgeHessian> hessians;  // of the last gradient/Hessian evaluation
-  double ms = 0.0;  // steady-clock time spent in the term, its broad phase and CCD (a step)
+  // Steady-clock time spent in the term (a step): its broad phase, CCD, energy, derivatives
+  // and the step's intersection check.
+  double ms = 0.0;
 };
 
 // Adds the steady-clock time of its scope to `ms` (SelfContactCache::ms).
@@ -41,19 +46,28 @@ struct SelfContactTimer {
 };
 
 struct SelfContact {
+  static constexpr EnergyKind kind = EnergyKind::Contact;
+  static constexpr bool scaled_by_h2 = true;
   bool on = false;
   const Boundary* boundary = nullptr;
   const std::vector<Vec2>* rest = nullptr;
   SelfContactParams params;
-  bool ccd = true;      // the line search's CCD filter (solver/self_contact_filter.h)
+  bool ccd = true;      // the filter's CCD (off: the broad phase alone)
   double eps_u = 1e-5;  // friction's eps_v h
-  SelfContactCache* cache = nullptr;
-};
 
-// Barrier + friction over the current candidates, not scaled (+infinity on contact).
-double self_contact_value(const SelfContact& c, const VecX& z, const VecX& x_start);
-// gradient += scale * dE/dz; the Hessian blocks (scaled) into c.cache->hessians.
-void self_contact_derivatives(const SelfContact& c, const VecX& z, const VecX& x_start,
-                              double scale, VecX& gradient);
+  // Barrier + friction over the current candidates, times scale (+infinity on contact).
+  double value(const TermPoint& at, double scale) const;
+  // Gradient into out.gradient, Hessian blocks into the pattern (or `outgrown`).
+  void add_derivatives(const TermPoint& at, double scale, Assembly& out) const;
+  // Candidates over z -> z + alpha dir, then the largest collision-free step in [0, alpha].
+  double max_step(const TermPoint& at, const VecX& dir, double alpha) const;
+  // The largest collision-free fraction of z -> trial over the current candidates (a trial
+  // the friction-crossing stop moved off the line; each node stays inside its path's box).
+  double path_step(const TermPoint& at, const VecX& trial) const;
+  // Candidates around the point z (no motion): Newton's start.
+  void begin(const TermPoint& at) const;
+  // The barrier as Contact, the friction as Friction, over the current candidates.
+  void add_energy_by_kind(const TermPoint& at, EnergyBins& bins) const;
+};
 
 }  // namespace invfree

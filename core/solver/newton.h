@@ -2,7 +2,7 @@
 //   start:  z = x^n, or (while the ceiling moves) x^n moved toward the inertial prediction
 //           x^n + h v^n as far as the line-search filters allow (a feasible warm start)
 //   repeat: p = -H^-1 g (H projected to PSD);  stop when |p|_inf / h < tol
-//           alpha = min(1, every term's filter)           (largest_feasible_step)
+//           alpha = min(1, every term's filter)           (largest_safe_step)
 //           halve alpha until E(z + alpha p) <= E(z);  z += alpha p
 // The ceiling (the demo's moving Dirichlet boundary) is an unknown pulled to its target by
 // a penalty (potential/ceiling_penalty.h); as soon as jumping to the target keeps every
@@ -28,21 +28,25 @@
 // `invfree study` / `invfree stability` with the method `plain-line-search` (both off);
 // see docs/study.md.
 //
-// Self-contact (problem.self_contact.on, potential/self_contact.h): every filter call also
-// runs the broad phase over the segment it checks and the additive CCD over its pairs, and
-// that candidate list serves every energy until the next filter call; a trial that a
-// friction-crossing stop moved off the line is CCD-checked along its own path and, if that
-// path is not collision-free, replaced by the straight trial; step expansion checks the
-// longest expansion once (its candidates cover every shorter one).
+// Newton knows no particular term: the energy, the derivatives, the filters (each term's
+// largest safe step, potential/term.h), the control terms' stopping test (the ceiling's
+// penalty) and the Hessian's eigenvalue bound all come from the problem's list of terms
+// (potential/incremental_potential.h). A stateful filter (self-contact's: the broad phase
+// over the segment it checks, then the additive CCD) fills a candidate list that serves
+// every energy until the next filter call; a trial that a friction-crossing stop moved off
+// the line is checked along its own path (path_step) and, if that path is not safe,
+// replaced by the straight trial; step expansion checks the longest expansion once (its
+// candidates cover every shorter one).
+// One rule decides a new symbolic analysis of the linear solver: prepare_linear_solver,
+// called before every solve (a changed pattern or changed solver settings).
 //
-// The linear solve may be inexact (PCG, see linalg/linear_solver.h); it is run until the
+// The linear solve may be inexact (PCG, see linalg/pcg.h); it is run until the
 // stopping decision is the one the exact direction would give, and each of its directions
 // is a descent direction, so the test and the invariants are exactly those of a direct solve.
 // Inputs: the step's problem, z = [x; c] at the start (feasible). Output: z at the
 // minimum (or the last iterate on failure) and a report; never loops forever.
 #pragma once
 
-#include "collision/broad_phase.h"
 #include "linalg/linear_solver.h"
 #include "potential/incremental_potential.h"
 #include "solver/friction_crossing.h"
@@ -52,11 +56,14 @@ namespace invfree {
 
 struct NewtonSettings {
   double tol = 1e-2;  // on |p|_inf / h, in m/s
+  LinearSolverKind linear_solver = LinearSolverKind::Auto;
+  // The Hessian is projected to PSD by every term (PCG may run; hessian_lower_bound holds).
+  bool projected = true;
   int max_iterations = 100;
   int max_halvings = 60;   // 2^-60: below double precision of any step
   bool predictor = false;  // warm start from the filtered x^n + h v^n
   // PCG stops when a CG step adds less than this fraction to the model decrease
-  // (linalg/linear_solver.h): looser directions, hardly more Newton iterations.
+  // (linalg/pcg.h): looser directions, hardly more Newton iterations.
   double forcing = 1e-1;
   bool step_expansion = true;          // see above
   bool friction_crossing_stop = true;  // see above
@@ -82,17 +89,17 @@ struct NewtonWorkspace {
   SparseHessian hessian;
   LinearSolver solver;  // set up by the caller for the hessian's pattern
   VecX gradient, rhs, direction, trial, trial2;
-  double min_node_mass = 0.0;  // for the PCG error bound (linear_solver.h)
+  double min_node_mass = 0.0;  // for the PCG error bound (linalg/pcg.h)
   FrictionCrossingScratch crossings;
-  // Self-contact (problem.self_contact.on): the broad phase's grid, the pattern version the
-  // solver's symbolic analysis is for (redone when the contact blocks change the pattern),
-  // and a scratch vector.
-  BroadPhaseGrid contact_grid;
-  int analyzed_pattern = 0;
-  VecX contact_scratch;
+  int analyzed_pattern = 0;  // the Hessian's pattern version the solver's analysis is for
 };
 
-NewtonResult minimize_incremental_potential(StepProblem& problem, const NewtonSettings& settings,
-                                            NewtonWorkspace& ws, VecX& z);
+// The one rule for a new symbolic analysis: the solver is set up again when it has none
+// yet, when its settings change, or when the Hessian's pattern did (a term outgrew it).
+void prepare_linear_solver(NewtonWorkspace& ws, LinearSolverKind kind, bool projected);
+
+NewtonResult minimize_incremental_potential(StepProblem& problem, StepCaches& caches,
+                                            const NewtonSettings& settings, NewtonWorkspace& ws,
+                                            VecX& z);
 
 }  // namespace invfree

@@ -122,7 +122,7 @@ void BM_Assembly(benchmark::State& state) {
   const VecX z = state_of(sim);
   VecX g;
   for (auto _ : state)
-    ip_gradient_hessian(sim.workspace->problem, z, g, sim.workspace->newton.hessian);
+    ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, z, g, sim.workspace->newton.hessian);
   state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
   state.counters["threads"] = thread_count();
 }
@@ -132,7 +132,7 @@ BENCHMARK(BM_Assembly)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 void BM_Energy(benchmark::State& state) {
   Simulation sim = compressed(static_cast<int>(state.range(0)));
   const VecX z = state_of(sim);
-  for (auto _ : state) benchmark::DoNotOptimize(ip_energy(sim.workspace->problem, z));
+  for (auto _ : state) benchmark::DoNotOptimize(ip_energy(sim.workspace->problem, sim.workspace->caches, z));
   state.SetItemsProcessed(state.iterations() * sim.mesh.triangle_count());
 }
 BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
@@ -151,7 +151,7 @@ void BM_LdltSolve(benchmark::State& state) {
   Simulation sim = make_simulation(scene);
   step(sim);
   VecX g;
-  ip_gradient_hessian(sim.workspace->problem, state_of(sim), g, sim.workspace->newton.hessian);
+  ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, state_of(sim), g, sim.workspace->newton.hessian);
   const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
   SparseLdlt ldlt;
   analyze_like_the_solver(h, ldlt);  // METIS from 5,000 unknowns, as in the solver

@@ -115,10 +115,10 @@ TEST(ParallelAssembly, BitIdenticalForAnyThreadCount) {
     set_thread_count(threads);
     VecX g;
     SparseHessian h = p.sim.workspace->newton.hessian;
-    ip_gradient_hessian(p.sim.workspace->problem, p.z, g, h);
+    ip_gradient_hessian(p.sim.workspace->problem, p.sim.workspace->caches, p.z, g, h);
     gradients.push_back(g);
     values.push_back(Eigen::Map<const VecX>(h.matrix.valuePtr(), h.matrix.nonZeros()));
-    energies.push_back(ip_energy(p.sim.workspace->problem, p.z));
+    energies.push_back(ip_energy(p.sim.workspace->problem, p.sim.workspace->caches, p.z));
   }
   set_thread_count(0);
   for (std::size_t k = 1; k < gradients.size(); ++k) {

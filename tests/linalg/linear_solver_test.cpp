@@ -31,14 +31,11 @@ struct System {
     VecX z(sim.workspace->problem.dof_count());
     z.head(sim.x.size()) = sim.x + perturb * s.h * sim.v;  // part of a step ahead: not the minimum
     z[sim.x.size()] = sim.ceiling_y;
-    ip_gradient_hessian(sim.workspace->problem, z, g, sim.workspace->newton.hessian);
+    ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, z, g, sim.workspace->newton.hessian);
     H = sim.workspace->newton.hessian.matrix;
     b = -g;
-    lambda_min = sim.workspace->newton.min_node_mass;
-    if (sim.workspace->problem.ceiling.on)
-      lambda_min = std::min(lambda_min, sim.workspace->problem.ceiling_penalty.fixed
-                                            ? 1.0
-                                            : sim.workspace->problem.ceiling_penalty.stiffness);
+    lambda_min =
+        hessian_lower_bound(sim.workspace->problem, sim.workspace->newton.min_node_mass);
   }
 };
 
@@ -129,7 +126,7 @@ TEST(Pcg, ReusesOneFactorisationAcrossNearbySystems) {
     VecX z(sys.sim.workspace->problem.dof_count()), g;
     z.head(sys.sim.x.size()) = sys.sim.x;
     z[sys.sim.x.size()] = sys.sim.ceiling_y;
-    ip_gradient_hessian(sys.sim.workspace->problem, z, g, sys.sim.workspace->newton.hessian);
+    ip_gradient_hessian(sys.sim.workspace->problem, sys.sim.workspace->caches, z, g, sys.sim.workspace->newton.hessian);
     const Eigen::SparseMatrix<double>& H = sys.sim.workspace->newton.hessian.matrix;
     const VecX b = -g;
     SolveRequest request;

@@ -21,6 +21,7 @@ struct PullFixture {
   Mesh mesh = square_mesh(1.0, 3);
   std::vector<double> mass = node_masses(mesh, 1000.0, MassMode::Uniform);
   StepProblem p;
+  StepCaches caches;
   SparseHessian hess = build_sparse_hessian(mesh, false);
   VecX z;
 
@@ -48,10 +49,10 @@ TEST(PullSpring, GradientAndHessianMatchFiniteDifferences) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     PullFixture f(seed);
     VecX g;
-    ip_gradient_hessian(f.p, f.z, g, f.hess);
+    ip_gradient_hessian(f.p, f.caches, f.z, g, f.hess);
     const double eps = 1e-7;
     const std::function<double(const VecX&)> energy = [&](const VecX& z) {
-      return ip_energy(f.p, z);
+      return ip_energy(f.p, f.caches, z);
     };
     EXPECT_LT(test::relative_error(g, test::fd_gradient(energy, f.z, eps)), 1e-6)
         << "seed " << seed;
@@ -61,8 +62,8 @@ TEST(PullSpring, GradientAndHessianMatchFiniteDifferences) {
       VecX a = f.z, b = f.z, ga, gb;
       a[k] += eps;
       b[k] -= eps;
-      ip_gradient_hessian(f.p, a, ga, scratch);
-      ip_gradient_hessian(f.p, b, gb, scratch);
+      ip_gradient_hessian(f.p, f.caches, a, ga, scratch);
+      ip_gradient_hessian(f.p, f.caches, b, gb, scratch);
       fdh.col(k) = (ga - gb) / (2 * eps);
     }
     EXPECT_LT(test::relative_error(Eigen::MatrixXd(f.hess.matrix), fdh), 1e-6) << "seed " << seed;
@@ -72,13 +73,13 @@ TEST(PullSpring, GradientAndHessianMatchFiniteDifferences) {
 TEST(PullSpring, AddsExactlyItsOwnTerm) {
   PullFixture f(3);
   VecX g_on, g_off;
-  ip_gradient_hessian(f.p, f.z, g_on, f.hess);
+  ip_gradient_hessian(f.p, f.caches, f.z, g_on, f.hess);
   const Eigen::MatrixXd h_on(f.hess.matrix);
-  const double e_on = ip_energy(f.p, f.z);
+  const double e_on = ip_energy(f.p, f.caches, f.z);
   f.p.pull.on = false;
-  ip_gradient_hessian(f.p, f.z, g_off, f.hess);
+  ip_gradient_hessian(f.p, f.caches, f.z, g_off, f.hess);
   const Eigen::MatrixXd h_off(f.hess.matrix);
-  const double e_off = ip_energy(f.p, f.z);
+  const double e_off = ip_energy(f.p, f.caches, f.z);
   const int i = f.p.pull.node;
   const double k = f.p.h * f.p.h * f.p.pull.stiffness;
   const Vec2 d = f.z.segment<2>(2 * i) - f.p.pull.target;

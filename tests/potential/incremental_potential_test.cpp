@@ -17,6 +17,7 @@ struct Fixture {
   Mesh mesh = square_mesh(1.0, 3);
   std::vector<double> mass = node_masses(mesh, 1000.0, MassMode::Uniform);
   StepProblem p;
+  StepCaches caches;
   SparseHessian hess = build_sparse_hessian(mesh, true);
   VecX z;
 
@@ -30,6 +31,7 @@ struct Fixture {
     p.friction.eps_u = 1e-3 * p.h;
     p.friction.weight.assign(n, 0.0);
     p.ceiling.on = true;
+    p.ceiling_penalty.on = true;
     p.ceiling_penalty.target = 0.5 + 0.002;
     p.ceiling_penalty.stiffness = 1000.0 * mass[0];
     z.resize(2 * n + 1);
@@ -57,10 +59,10 @@ TEST(IncrementalPotential, GradientAndHessianMatchFiniteDifferences) {
     for (unsigned seed = 1; seed <= 5; ++seed) {
       Fixture f(model, seed);
       VecX g;
-      ip_gradient_hessian(f.p, f.z, g, f.hess);
+      ip_gradient_hessian(f.p, f.caches, f.z, g, f.hess);
       const double eps = 1e-7;
       const std::function<double(const VecX&)> energy = [&](const VecX& z) {
-        return ip_energy(f.p, z);
+        return ip_energy(f.p, f.caches, z);
       };
       const VecX fd = test::fd_gradient(energy, f.z, eps);
       EXPECT_LT(test::relative_error(g, fd), 1e-6) << model_name(model) << " seed " << seed;
@@ -71,8 +73,8 @@ TEST(IncrementalPotential, GradientAndHessianMatchFiniteDifferences) {
         VecX a = f.z, b = f.z, ga, gb;
         a[k] += eps;
         b[k] -= eps;
-        ip_gradient_hessian(f.p, a, ga, scratch);
-        ip_gradient_hessian(f.p, b, gb, scratch);
+        ip_gradient_hessian(f.p, f.caches, a, ga, scratch);
+        ip_gradient_hessian(f.p, f.caches, b, gb, scratch);
         fdh.col(k) = (ga - gb) / (2 * eps);
       }
       const Eigen::MatrixXd h = Eigen::MatrixXd(f.hess.matrix);
@@ -83,23 +85,23 @@ TEST(IncrementalPotential, GradientAndHessianMatchFiniteDifferences) {
 
 TEST(IncrementalPotential, InfiniteOutsideTheFeasibleSet) {
   Fixture f(Model::NeoHookean, 1);
-  EXPECT_TRUE(std::isfinite(ip_energy(f.p, f.z)));
+  EXPECT_TRUE(std::isfinite(ip_energy(f.p, f.caches, f.z)));
   VecX below = f.z;
   below[1] = f.p.ground.y0 - 1e-6;  // node 0 is on the bottom row
-  EXPECT_TRUE(std::isinf(ip_energy(f.p, below)));
+  EXPECT_TRUE(std::isinf(ip_energy(f.p, f.caches, below)));
   VecX above = f.z;
   above[2 * 3 + 1] = f.z[f.z.size() - 1] + 1e-6;  // node 3 is on the top row
-  EXPECT_TRUE(std::isinf(ip_energy(f.p, above)));
+  EXPECT_TRUE(std::isinf(ip_energy(f.p, f.caches, above)));
   VecX inverted = f.z;
   inverted.segment<2>(2 * 5).swap(inverted.segment<2>(2 * 10));  // swap two interior nodes
-  EXPECT_TRUE(std::isinf(ip_energy(f.p, inverted)));
+  EXPECT_TRUE(std::isinf(ip_energy(f.p, f.caches, inverted)));
 }
 
 TEST(IncrementalPotential, FixedCeilingIsEliminated) {
   Fixture f(Model::NeoHookean, 2);
   f.p.ceiling_penalty.fixed = true;
   VecX g;
-  ip_gradient_hessian(f.p, f.z, g, f.hess);
+  ip_gradient_hessian(f.p, f.caches, f.z, g, f.hess);
   const int c = static_cast<int>(f.z.size()) - 1;
   EXPECT_EQ(g[c], 0.0);
   const Eigen::MatrixXd h = Eigen::MatrixXd(f.hess.matrix);

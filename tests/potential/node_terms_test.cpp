@@ -142,7 +142,7 @@ TEST(NodeTerms, PullSpringAndCeilingPenaltyMatchFiniteDifferences) {
   EXPECT_EQ(hxx, 500.0);
   EXPECT_EQ(hyy, 500.0);
 
-  const CeilingPenalty penalty{0.4, 3e4, false};
+  const CeilingPenalty penalty{true, 0.4, 3e4, false};
   for (double c : {0.3, 0.4, 0.55})
     EXPECT_NEAR(penalty.gradient(c), (penalty.value(c + e) - penalty.value(c - e)) / (2 * e),
                 1e-5 * std::max(1.0, std::abs(penalty.gradient(c))));

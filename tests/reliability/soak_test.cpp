@@ -128,7 +128,7 @@ TEST(Soak, TenThousandStepsWithChangingParameters) {
     // potentials, except that near convergence it takes the filtered step when the
     // predicted decrease is below E's own rounding noise, 64 eps (|E| + 1) per iteration
     // (core/newton.cpp); that noise is the only slack allowed.
-    const double e_start = ip_energy(sim.workspace->problem, z_start);
+    const double e_start = ip_energy(sim.workspace->problem, sim.workspace->caches, z_start);
     const double noise = 64.0 * std::numeric_limits<double>::epsilon() * (std::abs(e_start) + 1.0) *
                          std::max(1, r.newton_iterations);
     if (!std::isfinite(r.energy) || !std::isfinite(e_start))

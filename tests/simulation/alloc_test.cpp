@@ -157,7 +157,7 @@ TEST(NoAllocation, ImplicitStepsWithEveryLinearSolver) {
 
 // A large mesh: parallel colours and products, METIS-ordered LDL^T with its scratch on the
 // stack, and, with the CHOLMOD backend, CHOLMOD's own memory pooled
-// (core/linear_solver.cpp): what remains there are the runtimes' records in the steps
+// (core/linalg/cholmod_backend.cpp): what remains there are the runtimes' records in the steps
 // that refactorise, and a step that reuses the factor allocates nothing at all.
 TEST(NoAllocation, LargeMeshWithParallelAssemblyAndCholmod) {
   SceneDef s = *load_builtin_scene("compress").scene;

@@ -35,7 +35,7 @@ double exact_residual(const Simulation& sim) {
   const StepProblem& p = sim.workspace->problem;
   SparseHessian hess = build_sparse_hessian(sim.mesh, p.ceiling.on);
   VecX g;
-  ip_gradient_hessian(p, sim.workspace->z, g, hess);
+  ip_gradient_hessian(p, sim.workspace->caches, sim.workspace->z, g, hess);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(hess.matrix);
   EXPECT_EQ(ldlt.info(), Eigen::Success);
   const VecX dir = ldlt.solve(-g);
