@@ -15,6 +15,7 @@ packages=(
   xvfb xauth                                              # live-mode tests without a display
   clang libclang-rt-14-dev                                # libFuzzer target
   ffmpeg                                                  # optional: render --mp4
+  ccache                                                  # compile cache (rebuilds, CI)
 )
 missing=()
 for p in "${packages[@]}"; do
