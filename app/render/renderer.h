@@ -20,7 +20,7 @@
 // max_samples can add multisampling on a hardware GL.)
 //
 // GL use: only through GlApi (gl_api.h). Needs a current OpenGL 3.3 context (core or
-// compatibility profile) for create, draw, read_pixels, blit_to and the destructor. draw
+// compatibility profile) for create, draw, read_pixels and the destructor. draw
 // binds its own framebuffer, program, vertex array and texture, and restores the draw and
 // read framebuffer bindings and the viewport it found; it leaves no program, vertex array
 // or texture bound and GL_BLEND, GL_SCISSOR_TEST and GL_MULTISAMPLE as it found them.
@@ -29,7 +29,8 @@
 //   auto r = Renderer::create(get_proc_address, 1280, 720, &error);
 //   r->draw(capture_frame_state(sim));
 //   r->read_pixels(&rgba);            // offscreen: RGBA8, bottom row first
-//   r->blit_to(0, 0, 0, w, h);        // live: copy the frame into the window
+//   DrawOptions live; live.framebuffer = 0;
+//   r->draw(capture_frame_state(sim), live);   // live: straight into the window's back buffer
 #pragma once
 
 #include <array>

@@ -33,12 +33,10 @@ namespace {
 
 using invfree::live::LiveApp;
 
-// The n_seg slider's maximum in the page (docs/web.md, "Speed"): the largest mesh that
-// held about 30 frames/s in headless Chromium on the project's 2-core machine, nearly idle
-// (load 2.4-3, the browser's own): n_seg 4 35.9, 32 31-33, 36 30-31, 40 28-30 frames/s,
-// 48 26-29 (steps of 8 ms at 40, 12 ms at 48; the drawing sets the rest and varies by
-// +-20% between runs). Measured with tests/web/measure_fps.py 4 16 32 40 44 48. Larger
-// meshes can still be asked for in the URL (?n_seg=N).
+// The n_seg slider's maximum in the page: the largest mesh that holds about 30 frames/s in
+// headless Chromium on a 2-core machine (docs/web.md, "Speed", gives the figures and
+// `tests/web/measure_fps.py` measures them). Larger meshes can still be asked for in the
+// URL (?n_seg=N).
 constexpr int kWebMaxSegments = 40;
 
 struct Page {

@@ -1,4 +1,4 @@
-// The movie and the numbers behind it (issue 20): `render --force --mp4` into a directory
+// The movie and the numbers behind it: `render --force --mp4` into a directory
 // holding more and larger frames of an older run makes the movie from this run's frames
 // only; a frame-rate flag that is not finite or out of range, and a real-time rate
 // 1 / (h * steps-per-frame) outside 0.1-1000 frames/s with --mp4, are refused (exit 2)

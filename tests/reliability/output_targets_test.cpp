@@ -1,4 +1,4 @@
-// What an output may be (issue 20, docs/outputs.md): a regular file or nothing yet — a
+// What an output may be (docs/outputs.md): a regular file or nothing yet — a
 // FIFO, a device node, a directory, a link to a device, `-` or the command's own stdout
 // are refused with exit 2 before the first step and left as they were; an output that is
 // one of the inputs (same path, a hard or symbolic link, another spelling) likewise; a
@@ -159,8 +159,8 @@ TEST(OutputLock, OneRunPerDirectoryInOneProcess) {
   fs::remove_all(dir);
 }
 
-// Two renders into one directory (issue 20: both passed the emptiness check and the
-// second overwrote the first's frames). The second is refused, with and without --force,
+// Two renders into one directory: without a lock both would pass the emptiness check and
+// the second would overwrite the first's frames. The second is refused, with and without --force,
 // and so is a simulate --obj into it; the first finishes undisturbed.
 TEST(OutputLock, ASecondWriterIsRefused) {
   const std::string dir = fresh_dir("lock_two") + "/frames";

@@ -1,4 +1,4 @@
-// Signals at each stage of a run (issue 20, app/interrupt.h): before the first step (a
+// Signals at each stage of a run (app/interrupt.h): before the first step (a
 // signal that is already pending when main starts), during the steps (output_test.cpp),
 // and while ffmpeg makes the movie — Ctrl-C to the whole process group as a terminal
 // sends it, and SIGTERM or SIGHUP to invfree alone, which passes it on. Every time: exit

@@ -162,7 +162,7 @@ TEST(RenderGolden, InvertedTrianglesAreRinged) {
 TEST(RenderGolden, CompressFineMeshFoldsWithoutLoops) {
   // n_seg 64 at step 290 (the ceiling at its stop): the bottom surface folds in two places;
   // with self-contact the folds are creases, without it they are small loops through the
-  // surface (issue 17). The state is checked intersection-free by the exact test.
+  // surface. The state is checked intersection-free by the exact test.
   constexpr long kStep = 290;
   Simulation sim =
       make_simulation(scene("compress", {"mesh.n_seg=64", "self_contact.enabled=true"}));
