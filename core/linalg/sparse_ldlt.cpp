@@ -250,35 +250,23 @@ void SparseLdlt::share_row_indices() {
   solve_rows_.shrink_to_fit();
 }
 
-// Cuts the postordered tree into a top and disjoint subtrees over `bins` bins,
-// minimising (serial top work) + (largest bin's work) over successive expansions of the
-// heaviest subtree; work = a column's share of one solve.
-void SparseLdlt::plan(int bins) {
-  const int n = n_;
-  std::vector<double> w(n), subtree(n);
-  std::vector<int> first(n);
-  for (int j = 0; j < n; ++j) {
-    w[j] = 2.0 * (lp_[j + 1] - lp_[j]) + 1.0;
-    subtree[j] = w[j];
-    first[j] = j;
-  }
-  for (int j = 0; j < n; ++j)  // postorder: every child before its parent
-    if (parent_[j] != -1) {
-      subtree[parent_[j]] += subtree[j];
-      first[parent_[j]] = std::min(first[parent_[j]], first[j]);
-    }
-  std::vector<std::vector<int>> children(n);
-  std::vector<int> roots;
-  for (int j = 0; j < n; ++j) (parent_[j] == -1 ? roots : children[parent_[j]]).push_back(j);
-  double total = 0.0;
-  for (int r : roots) total += subtree[r];
+namespace {
 
-  // Largest-first assignment of the candidate subtrees to bins; returns the largest bin.
-  auto heavier = [&](int a, int b) {
+// The postordered elimination tree with each column's work (its share of one solve) and
+// its subtree's, the first column of each subtree, and the children of each column.
+struct WorkTree {
+  std::vector<double> w, subtree;
+  std::vector<int> first;
+  std::vector<std::vector<int>> children;
+  std::vector<int> roots;
+  double total = 0.0;
+
+  bool heavier(int a, int b) const {
     return subtree[a] != subtree[b] ? subtree[a] > subtree[b] : a < b;
-  };
-  auto assign = [&](std::vector<int> cand, std::vector<int>* owner) {
-    std::sort(cand.begin(), cand.end(), heavier);
+  }
+  // Largest-first assignment of the candidate subtrees to bins; returns the largest bin.
+  double assign(std::vector<int> cand, int bins, std::vector<int>* owner) const {
+    std::sort(cand.begin(), cand.end(), [this](int a, int b) { return heavier(a, b); });
     std::vector<double> load(bins, 0.0);
     for (int c : cand) {
       const int b = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
@@ -286,37 +274,77 @@ void SparseLdlt::plan(int bins) {
       if (owner) owner->push_back(b);
     }
     return *std::max_element(load.begin(), load.end());
-  };
-  auto expand = [&](std::vector<int>& cand, double& top_work) {
-    auto it = std::min_element(cand.begin(), cand.end(), heavier);
+  }
+  // Moves the heaviest candidate's root to the top, its children into the candidates.
+  void expand(std::vector<int>& cand, double& top_work) const {
+    auto it =
+        std::min_element(cand.begin(), cand.end(), [this](int a, int b) { return heavier(a, b); });
     const int c = *it;
     cand.erase(it);
     top_work += w[c];
     for (int child : children[c]) cand.push_back(child);
-  };
+  }
+};
 
-  std::vector<int> cand = roots;
+WorkTree work_tree(int n, const std::vector<int>& lp, const std::vector<int>& parent) {
+  WorkTree t;
+  t.w.resize(n);
+  t.subtree.resize(n);
+  t.first.resize(n);
+  for (int j = 0; j < n; ++j) {
+    t.w[j] = 2.0 * (lp[j + 1] - lp[j]) + 1.0;
+    t.subtree[j] = t.w[j];
+    t.first[j] = j;
+  }
+  for (int j = 0; j < n; ++j)  // postorder: every child before its parent
+    if (parent[j] != -1) {
+      t.subtree[parent[j]] += t.subtree[j];
+      t.first[parent[j]] = std::min(t.first[parent[j]], t.first[j]);
+    }
+  t.children.resize(n);
+  for (int j = 0; j < n; ++j) (parent[j] == -1 ? t.roots : t.children[parent[j]]).push_back(j);
+  for (int r : t.roots) t.total += t.subtree[r];
+  return t;
+}
+
+// How many expansions of the heaviest subtree minimise (serial top work) + (largest bin's
+// work), trying up to 4n while the top holds at most half the work.
+int best_expansions(const WorkTree& t, int bins, int n) {
+  if (bins == 1) return 0;
+  std::vector<int> cand = t.roots;
   double top_work = 0.0;
   int best_steps = 0;
-  double best_cost = bins == 1 ? 0.0 : assign(cand, nullptr);
-  if (bins > 1)
-    for (int step = 1; step <= 4 * n && !cand.empty(); ++step) {
-      expand(cand, top_work);
-      if (top_work > 0.5 * total) break;
-      const double cost = top_work + assign(cand, nullptr);
-      if (cost < best_cost) {
-        best_cost = cost;
-        best_steps = step;
-      }
+  double best_cost = t.assign(cand, bins, nullptr);
+  for (int step = 1; step <= 4 * n && !cand.empty(); ++step) {
+    t.expand(cand, top_work);
+    if (top_work > 0.5 * t.total) break;
+    const double cost = top_work + t.assign(cand, bins, nullptr);
+    if (cost < best_cost) {
+      best_cost = cost;
+      best_steps = step;
     }
-  cand = roots;
-  top_work = 0.0;
-  for (int step = 0; step < best_steps; ++step) expand(cand, top_work);
-  serial_fraction_ = total > 0.0 ? top_work / total : 0.0;
+  }
+  return best_steps;
+}
 
-  std::sort(cand.begin(), cand.end(), heavier);
+}  // namespace
+
+// Cuts the postordered tree into a top and disjoint subtrees over `bins` bins,
+// minimising (serial top work) + (largest bin's work) over successive expansions of the
+// heaviest subtree; work = a column's share of one solve.
+void SparseLdlt::plan(int bins) {
+  const int n = n_;
+  const WorkTree t = work_tree(n, lp_, parent_);
+  const int best_steps = best_expansions(t, bins, n);
+  std::vector<int> cand = t.roots;
+  double top_work = 0.0;
+  for (int step = 0; step < best_steps; ++step) t.expand(cand, top_work);
+  serial_fraction_ = t.total > 0.0 ? top_work / t.total : 0.0;
+  const std::vector<int>& first = t.first;
+
+  std::sort(cand.begin(), cand.end(), [&t](int a, int b) { return t.heavier(a, b); });
   std::vector<int> owner;
-  assign(cand, &owner);
+  t.assign(cand, bins, &owner);
   std::vector<std::vector<std::pair<int, int>>> per_bin(bins);
   std::vector<char> is_top(n, 1);
   for (std::size_t k = 0; k < cand.size(); ++k) {

@@ -93,6 +93,48 @@ std::string toml_string(std::string_view text) {
   return out + "\"";
 }
 
+// An error and the line it is on (0: none); `what` is empty when there is none.
+struct LineError {
+  int line = 0;
+  std::string what;
+};
+
+// The text made safe for toml++ (toml_guard.h) and parsed into `root`.
+LineError parse_toml(std::string_view text, const std::string& source, toml::table& root) {
+  std::string safe_text;
+  int hazard_line = 0;
+  if (const std::string hazard = tomlpp_safe_text(text, &safe_text, &hazard_line); !hazard.empty())
+    return {hazard_line, "malformed TOML: " + hazard};
+  try {
+    root = toml::parse(safe_text, source);
+  } catch (const toml::parse_error& e) {
+    std::string what(e.description());
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    return {static_cast<int>(e.source().begin.line), "malformed TOML: " + printable(what, 200)};
+  }
+  return {};
+}
+
+// The keys of one [section] into the scene, each key's line into `lines`. Two passes:
+// `enabled` last, so `enabled = false` wins over the other keys of its section (which
+// switch the term on, as they do in --set) whatever their order.
+LineError read_section(const std::string& k, const toml::table& table, SceneDef& s,
+                       MaterialInput& material, std::map<std::string, int>& lines) {
+  for (int pass = 0; pass < 2; ++pass) {
+    for (auto&& [sub, value] : table) {
+      const std::string sk(sub.str());
+      if ((sk == "enabled") != (pass == 1)) continue;
+      const std::string full = k + "." + printable(sk);
+      const int vline = static_cast<int>(value.source().begin.line);
+      const SceneField* spec = find_scene_field(k, sk);
+      if (!spec) return {vline, full + ": " + unknown_key_error(k, sk)};
+      if (auto r = apply_key(s, *spec, value, material); !r.empty()) return {vline, full + ": " + r};
+      lines[full] = vline;
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
@@ -101,18 +143,9 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   };
   if (text.find('\0') != std::string_view::npos)
     return fail(0, "not a text file (it contains NUL bytes)");
-  std::string safe_text;
-  int hazard_line = 0;
-  if (const std::string hazard = tomlpp_safe_text(text, &safe_text, &hazard_line); !hazard.empty())
-    return fail(hazard_line, "malformed TOML: " + hazard);
   toml::table root;
-  try {
-    root = toml::parse(safe_text, source);
-  } catch (const toml::parse_error& e) {
-    std::string what(e.description());
-    std::replace(what.begin(), what.end(), '\n', ' ');
-    return fail(static_cast<int>(e.source().begin.line), "malformed TOML: " + printable(what, 200));
-  }
+  if (const LineError e = parse_toml(text, source, root); !e.what.empty())
+    return fail(e.line, e.what);
   SceneDef s;
   for (const auto& section : scene_sections())
     if (section.term) s.*(section.term) = false;  // switched on by their sections
@@ -151,21 +184,8 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
       return fail(line,
                   k + ": expected a [" + k + "] section, got " + scene_io::toml_type_name(node));
     if (section->term) s.*(section->term) = true;
-    // Two passes: `enabled` last, so `enabled = false` wins over the other keys of its
-    // section (which switch the term on, as they do in --set) whatever their order.
-    for (int pass = 0; pass < 2; ++pass) {
-      for (auto&& [sub, value] : *table) {
-        const std::string sk(sub.str());
-        if ((sk == "enabled") != (pass == 1)) continue;
-        const std::string full = k + "." + printable(sk);
-        const int vline = static_cast<int>(value.source().begin.line);
-        const SceneField* spec = find_scene_field(k, sk);
-        if (!spec) return fail(vline, full + ": " + unknown_key_error(k, sk));
-        if (auto r = apply_key(s, *spec, value, material); !r.empty())
-          return fail(vline, full + ": " + r);
-        lines[full] = vline;
-      }
-    }
+    if (const LineError e = read_section(k, *table, s, material, lines); !e.what.empty())
+      return fail(e.line, e.what);
   }
   auto line_of = [&](const std::string& key) {
     const auto it = lines.find(key);
