@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/colormap.h"
+#include "enum_names.h"
 
 namespace invfree::render {
 
@@ -14,16 +15,16 @@ std::optional<ColorRangeMode> parse_color_range_mode(const std::string& name) {
   return std::nullopt;
 }
 
+namespace {
+constexpr EnumName<ColorRangeMode> kColorRangeModeNames[] = {
+    {ColorRangeMode::Fixed, "fixed"},
+    {ColorRangeMode::Run, "run"},
+    {ColorRangeMode::Frame, "frame"},
+};
+}  // namespace
+
 const char* color_range_mode_name(ColorRangeMode mode) {
-  switch (mode) {
-    case ColorRangeMode::Fixed:
-      return "fixed";
-    case ColorRangeMode::Run:
-      return "run";
-    case ColorRangeMode::Frame:
-      return "frame";
-  }
-  return "?";
+  return enum_name(kColorRangeModeNames, mode);
 }
 
 void ColorRangeTracker::apply(double lo, double hi, DrawOptions* options) {

@@ -4,30 +4,26 @@
 #include <cmath>
 
 #include "app/format_number.h"
+#include "enum_names.h"
 #include "make_terms.h"
 
 namespace invfree {
 
+namespace {
+constexpr EnumName<Verdict> kVerdictNames[] = {
+    {Verdict::Ok, "ok"},
+    {Verdict::Inverted, "inverted"},
+    {Verdict::Penetrated, "penetrated"},
+    {Verdict::NonFinite, "non-finite"},
+    {Verdict::NewtonFailed, "newton-failed"},
+    {Verdict::BlewUp, "blew-up"},
+    {Verdict::NotApplicable, "n/a"},
+    {Verdict::Intersected, "intersected"},
+};
+}  // namespace
+
 const char* verdict_name(Verdict v) {
-  switch (v) {
-    case Verdict::Ok:
-      return "ok";
-    case Verdict::Inverted:
-      return "inverted";
-    case Verdict::Penetrated:
-      return "penetrated";
-    case Verdict::NonFinite:
-      return "non-finite";
-    case Verdict::NewtonFailed:
-      return "newton-failed";
-    case Verdict::BlewUp:
-      return "blew-up";
-    case Verdict::NotApplicable:
-      return "n/a";
-    case Verdict::Intersected:
-      return "intersected";
-  }
-  return "?";
+  return enum_name(kVerdictNames, v);
 }
 
 Verdict verdict_from_status(StepStatus s) {

@@ -11,29 +11,25 @@
 #include <optional>
 #include <string_view>
 
+#include "enum_names.h"
+
 namespace invfree {
 
 enum class LinearSolverKind { Auto, Ldlt, Cholmod, Pcg };
 
+inline constexpr EnumName<LinearSolverKind> kLinearSolverNames[] = {
+    {LinearSolverKind::Auto, "auto"},
+    {LinearSolverKind::Ldlt, "ldlt"},
+    {LinearSolverKind::Cholmod, "cholmod"},
+    {LinearSolverKind::Pcg, "pcg"},
+};
+
 inline const char* linear_solver_name(LinearSolverKind k) {
-  switch (k) {
-    case LinearSolverKind::Auto:
-      return "auto";
-    case LinearSolverKind::Ldlt:
-      return "ldlt";
-    case LinearSolverKind::Cholmod:
-      return "cholmod";
-    case LinearSolverKind::Pcg:
-      return "pcg";
-  }
-  return "?";
+  return enum_name(kLinearSolverNames, k);
 }
 
 inline std::optional<LinearSolverKind> linear_solver_from_name(std::string_view name) {
-  for (auto k : {LinearSolverKind::Auto, LinearSolverKind::Ldlt, LinearSolverKind::Cholmod,
-                 LinearSolverKind::Pcg})
-    if (name == linear_solver_name(k)) return k;
-  return std::nullopt;
+  return enum_from_name(kLinearSolverNames, name);
 }
 
 }  // namespace invfree

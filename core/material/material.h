@@ -8,7 +8,7 @@
 #include <span>
 #include <string_view>
 
-#include "scene/enum_names.h"
+#include "enum_names.h"
 
 namespace invfree {
 

@@ -14,7 +14,7 @@
 #include "material/material.h"
 #include "material/neo_hookean.h"
 #include "material/stable_neo_hookean.h"
-#include "scene/enum_names.h"
+#include "enum_names.h"
 
 namespace invfree {
 
@@ -36,7 +36,7 @@ inline constexpr std::tuple kModels{
                                                           "stable neo-Hookean"},
 };
 
-// The models' {value, name} and {value, label} pairs (scene/enum_names.h).
+// The models' {value, name} and {value, label} pairs (enum_names.h).
 inline constexpr auto kModelNames = std::apply(
     [](const auto&... m) {
       return std::array{EnumName<Model>{m.kind, m.name}...};

@@ -14,7 +14,7 @@
 
 #include "linalg/linear_solver_kind.h"
 #include "material/material.h"
-#include "scene/enum_names.h"
+#include "enum_names.h"
 #include "scene/mesh.h"
 
 namespace invfree {

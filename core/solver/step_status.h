@@ -1,6 +1,8 @@
 // Outcome of a time step, shared by the solver, the tools and the tests.
 #pragma once
 
+#include "enum_names.h"
+
 namespace invfree {
 
 enum class StepStatus {
@@ -13,24 +15,18 @@ enum class StepStatus {
   Intersected,        // two boundary edges intersect (self-contact on)
 };
 
+inline constexpr EnumName<StepStatus> kStepStatusNames[] = {
+    {StepStatus::Ok, "ok"},
+    {StepStatus::NewtonFailed, "newton-failed"},
+    {StepStatus::LinearSolveFailed, "linear-solve-failed"},
+    {StepStatus::NonFinite, "non-finite"},
+    {StepStatus::Inverted, "inverted"},
+    {StepStatus::Penetrated, "penetrated"},
+    {StepStatus::Intersected, "intersected"},
+};
+
 inline const char* step_status_name(StepStatus s) {
-  switch (s) {
-    case StepStatus::Ok:
-      return "ok";
-    case StepStatus::NewtonFailed:
-      return "newton-failed";
-    case StepStatus::LinearSolveFailed:
-      return "linear-solve-failed";
-    case StepStatus::NonFinite:
-      return "non-finite";
-    case StepStatus::Inverted:
-      return "inverted";
-    case StepStatus::Penetrated:
-      return "penetrated";
-    case StepStatus::Intersected:
-      return "intersected";
-  }
-  return "?";
+  return enum_name(kStepStatusNames, s);
 }
 
 }  // namespace invfree

@@ -1,7 +1,8 @@
 // The one idiom of every enum <-> string map of the project: a constexpr array of
 // {value, name} pairs beside the enum, and two lookups over it. A name is a scene file's
 // spelling ("neo-hookean"); the arrays are also the choices of string keys
-// (scene/scene_fields.h). Dependency-free, so any folder may include it.
+// (scene/scene_fields.h). Dependency-free, beside types.h at the bottom of the core, so any
+// folder may include it.
 #pragma once
 
 #include <optional>
