@@ -5,6 +5,19 @@
 
 namespace invfree {
 
+EnergyReport energy_report_of(const StepProblem& p, StepCaches& caches, const VecX& z,
+                              const VecX& v) {
+  EnergyReport e;
+  for (int i = 0; i < p.node_count(); ++i)
+    e.kinetic += 0.5 * (*p.mass)[i] * v.segment<2>(2 * i).squaredNorm();
+  EnergyBins bins;
+  energies_by_kind(p, caches, z, bins);
+  e.elastic = bins[EnergyKind::Elastic];
+  e.gravitational = bins[EnergyKind::Gravity];
+  e.contact = bins[EnergyKind::Contact];
+  return e;
+}
+
 EnergyReport energy_report(const Simulation& sim, EnergyReportParts parts) {
   const SceneDef& s = sim.scene;
   const bool contact = parts == EnergyReportParts::All;
@@ -17,14 +30,8 @@ EnergyReport energy_report(const Simulation& sim, EnergyReportParts parts) {
   VecX z(p.dof_count());
   z.head(2 * n) = sim.x;
   if (p.ceiling.on) z[2 * n] = sim.ceiling_y;
-  EnergyReport e;
-  for (int i = 0; i < n; ++i)
-    e.kinetic += 0.5 * sim.node_mass[i] * sim.v.segment<2>(2 * i).squaredNorm();
-  EnergyBins bins;
-  energies_by_kind(p, caches, z, bins);
-  e.elastic = bins[EnergyKind::Elastic];
-  e.gravitational = bins[EnergyKind::Gravity];
-  if (contact) e.contact = bins[EnergyKind::Contact];
+  EnergyReport e = energy_report_of(p, caches, z, sim.v);
+  if (!contact) e.contact = 0.0;
   return e;
 }
 

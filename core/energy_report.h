@@ -13,6 +13,7 @@
 // control terms (the ceiling's penalty, the grab) are not energies of the bodies.
 #pragma once
 
+#include "potential/incremental_potential.h"
 #include "simulation.h"
 
 namespace invfree {
@@ -25,5 +26,9 @@ struct EnergyReport {
 enum class EnergyReportParts { All, WithoutContact };
 EnergyReport energy_report(const Simulation& sim,
                            EnergyReportParts parts = EnergyReportParts::All);
+// The same from terms already built at the state z = [x; c] with velocities v (a step's
+// own problem: no allocation).
+EnergyReport energy_report_of(const StepProblem& p, StepCaches& caches, const VecX& z,
+                              const VecX& v);
 
 }  // namespace invfree
