@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "tests/run_command.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -19,7 +20,7 @@ using test::one_line;
 using test::slurp;
 
 CommandResult run(const std::string& args) {
-  return test::run_command(INVFREE_EXE, args, false);
+  return test::run_command(::invfree::test::exe_path(), args, false);
 }
 
 TEST(CliRules, MixingYoungAndLameOnTheCommandLineExitsTwoInEitherOrder) {

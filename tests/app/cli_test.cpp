@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tests/run_command.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -22,7 +23,7 @@ using test::CommandResult;
 using test::slurp;
 
 CommandResult run(const std::string& args) {
-  return test::run_command(INVFREE_EXE, args, false);
+  return test::run_command(::invfree::test::exe_path(), args, false);
 }
 
 TEST(Cli, SimulateWritesCsvAndObj) {

@@ -1,7 +1,7 @@
 // Checks that the documentation cannot rot: README.md stays short, its C++ example is
 // exactly examples/embed.cpp (which tests/examples/ builds and runs), and every relative
 // link, heading anchor and repository path written in README.md and docs/*.md exists.
-// Input: the source tree (INVFREE_SOURCE_DIR). Output: one failure per broken reference.
+// Input: the source tree (tests/test_paths.h). Output: one failure per broken reference.
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -13,11 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/test_paths.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kRoot = INVFREE_SOURCE_DIR;
+const fs::path kRoot = ::invfree::test::source_dir();
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -13,6 +13,7 @@
 
 #include "app/live/key_bindings.h"
 #include "tests/run_command.h"
+#include "tests/test_paths.h"
 
 namespace invfree::live {
 namespace {
@@ -21,7 +22,7 @@ using Result = test::CommandResult;
 
 // Runs invfree with no display at all (DISPLAY and WAYLAND_DISPLAY removed).
 Result run_headless(const std::string& args) {
-  return test::run_command(INVFREE_EXE, args, true);
+  return test::run_command(::invfree::test::exe_path(), args, true);
 }
 
 int lines(const std::string& s) {

@@ -18,11 +18,12 @@
 #include "app/live/live_app.h"
 #include "scene_io/builtin_scenes.h"
 #include "tests/render/image_compare.h"
+#include "tests/test_paths.h"
 
 namespace invfree::live {
 namespace {
 
-const std::string kGoldenDir = std::string(INVFREE_SOURCE_DIR) + "/tests/live/goldens";
+const std::string kGoldenDir = std::string(::invfree::test::source_dir()) + "/tests/live/goldens";
 
 std::string temp_dir() {
   const std::string d = ::testing::TempDir() + "/live_window_" + std::to_string(::getpid());
@@ -31,7 +32,7 @@ std::string temp_dir() {
 }
 
 int run(const std::string& args) {
-  const std::string cmd = std::string(INVFREE_EXE) + " " + args + " >/dev/null";
+  const std::string cmd = std::string(::invfree::test::exe_path()) + " " + args + " >/dev/null";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }

@@ -15,6 +15,7 @@
 #include "scene_io/scene_file.h"
 #include "simulation.h"
 #include "tests/reliability/process.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -116,8 +117,8 @@ TEST(Determinism, ProcessesAndThreadCountsAgreeBitForBit) {
 
 // Every linear solver backend (the scene key solver.linear_solver) claims bit-identical
 // results for any INVFREE_THREADS. n_seg 48 is large enough for CHOLMOD's supernodal
-// factorisation to call multithreaded BLAS, whose rounding depended on the thread count
-// (issue 20: three different trajectories from step 1 for 1, 2 and 3 threads).
+// factorisation to call multithreaded BLAS, whose rounding would otherwise depend on the
+// thread count (three different trajectories from step 1 for 1, 2 and 3 threads).
 TEST(Determinism, EveryLinearSolverAgreesAcrossThreadCounts) {
   const std::string base =
       ::testing::TempDir() + "/determinism_solver_" + std::to_string(::getpid());
@@ -137,7 +138,7 @@ TEST(Determinism, EveryLinearSolverAgreesAcrossThreadCounts) {
 }
 
 TEST(Determinism, StoredRunHash) {
-  const std::string path = std::string(INVFREE_SOURCE_DIR) + "/tests/reliability/stored_run.txt";
+  const std::string path = std::string(::invfree::test::source_dir()) + "/tests/reliability/stored_run.txt";
   std::ifstream in(path);
   ASSERT_TRUE(in) << path;
   std::string scene_name, expected;

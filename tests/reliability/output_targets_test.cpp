@@ -21,6 +21,7 @@
 #include "app/output_files.h"
 #include "tests/reliability/output_checks.h"
 #include "tests/reliability/process.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -99,7 +100,7 @@ TEST(OutputTargets, NonRegularFilesAreRefusedAndLeftAsTheyWere) {
 TEST(OutputTargets, AnOutputThatIsAnInputIsRefused) {
   const std::string dir = fresh_dir("alias");
   const std::string scene = dir + "/scene.toml";
-  fs::copy_file(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes/compress.toml", scene);
+  fs::copy_file(std::string(::invfree::test::source_dir()) + "/assets/scenes/compress.toml", scene);
   const std::string original = slurp(scene);
   fs::create_hard_link(scene, dir + "/hard.csv");
   fs::create_symlink(scene, dir + "/soft.csv");
@@ -164,7 +165,7 @@ TEST(OutputLock, OneRunPerDirectoryInOneProcess) {
 // and so is a simulate --obj into it; the first finishes undisturbed.
 TEST(OutputLock, ASecondWriterIsRefused) {
   const std::string dir = fresh_dir("lock_two") + "/frames";
-  Process first({INVFREE_EXE, "render", "--frames", "100000", "--size", "96x64", "--out", dir});
+  Process first({::invfree::test::exe_path(), "render", "--frames", "100000", "--size", "96x64", "--out", dir});
   ASSERT_GT(first.pid(), 0);
   wait_for_files(dir, ".png", 3);
   const std::string holder = "another invfree run is writing into this directory (pid " +
@@ -199,7 +200,7 @@ TEST(OutputLock, ASecondWriterIsRefused) {
 TEST(OutputLock, AKilledRunDoesNotBlockTheNext) {
   const std::string dir = fresh_dir("lock_killed") + "/obj";
   {
-    Process killed({INVFREE_EXE, "simulate", "--steps", "100000000", "--obj", dir});
+    Process killed({::invfree::test::exe_path(), "simulate", "--steps", "100000000", "--obj", dir});
     ASSERT_GT(killed.pid(), 0);
     wait_for_files(dir, ".obj", 5);
     ASSERT_EQ(::kill(killed.pid(), SIGKILL), 0);

@@ -14,6 +14,7 @@
 #include "app/output_files.h"
 #include "tests/reliability/output_checks.h"
 #include "tests/reliability/process.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -205,7 +206,7 @@ TEST(ExistingOutput, NonEmptyDirectoryRefusedUnlessForce) {
 // with `expected_code`, keeping complete outputs for the steps taken.
 void interrupt_run(int sig, int expected_code) {
   const std::string dir = fresh_dir("interrupt_" + std::to_string(sig));
-  test::Process p({INVFREE_EXE, "simulate", "--steps", "100000000", "--obj", dir + "/obj", "--csv",
+  test::Process p({::invfree::test::exe_path(), "simulate", "--steps", "100000000", "--obj", dir + "/obj", "--csv",
                    dir + "/run.csv"});
   ASSERT_GT(p.pid(), 0);
   wait_for_files(dir + "/obj", ".obj", 40);
@@ -231,7 +232,7 @@ void interrupt_run(int sig, int expected_code) {
 TEST(Interrupt, CtrlCDuringARenderLeavesOnlyCompleteFrames) {
   const std::string dir = fresh_dir("render_interrupt");
   test::Process p(
-      {INVFREE_EXE, "render", "--frames", "100000", "--size", "160x120", "--out", dir + "/frames"});
+      {::invfree::test::exe_path(), "render", "--frames", "100000", "--size", "160x120", "--out", dir + "/frames"});
   ASSERT_GT(p.pid(), 0);
   wait_for_files(dir + "/frames", ".png", 10);
   ASSERT_EQ(::kill(p.pid(), SIGINT), 0);

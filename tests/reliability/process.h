@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "tests/run_command.h"  // slurp, one_line
+#include "tests/test_paths.h"
 
 extern char** environ;
 
@@ -145,7 +146,7 @@ inline ProcessResult run_invfree(const std::vector<std::string>& args,
                                  const std::vector<std::string>& env = {},
                                  const std::string& shell_prefix = "",
                                  const SpawnOptions& options = {}) {
-  std::vector<std::string> full = {INVFREE_EXE};
+  std::vector<std::string> full = {::invfree::test::exe_path()};
   full.insert(full.end(), args.begin(), args.end());
   return Process(full, env, shell_prefix, options).wait();
 }

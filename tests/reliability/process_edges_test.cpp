@@ -1,4 +1,4 @@
-// What surrounds a command (issue 20): an invalid INVFREE_THREADS is refused with one
+// What surrounds a command: an invalid INVFREE_THREADS is refused with one
 // line (exit 2) instead of being silently ignored, and standard output that cannot be
 // written (a full device, a file-size limit) fails the command with one line (exit 4)
 // instead of exit 0 with the summary lost.

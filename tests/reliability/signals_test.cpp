@@ -15,6 +15,7 @@
 #include "app/output_files.h"
 #include "tests/reliability/output_checks.h"
 #include "tests/reliability/process.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -31,7 +32,7 @@ const std::string kCsvHeader =
 // directory): stop before the first step, keep step 0 complete.
 void signal_before_start(int sig, int expected_code) {
   const std::string dir = fresh_dir("early_" + std::to_string(sig));
-  Process p({INVFREE_EXE, "simulate", "--steps", "1000", "--obj", dir + "/obj", "--csv",
+  Process p({::invfree::test::exe_path(), "simulate", "--steps", "1000", "--obj", dir + "/obj", "--csv",
              dir + "/run.csv"},
             {}, "", with_blocked(sig));
   ASSERT_GT(p.pid(), 0);
@@ -53,7 +54,7 @@ TEST(Signals, SighupBeforeTheFirstStep) {
 
 TEST(Signals, SigintBeforeTheFirstFrame) {
   const std::string dir = fresh_dir("early_render");
-  Process p({INVFREE_EXE, "render", "--frames", "1000", "--size", "96x64", "--out", dir + "/f"}, {},
+  Process p({::invfree::test::exe_path(), "render", "--frames", "1000", "--size", "96x64", "--out", dir + "/f"}, {},
             "", with_blocked(SIGINT));
   ASSERT_GT(p.pid(), 0);
   ASSERT_EQ(::kill(p.pid(), SIGINT), 0);
@@ -67,7 +68,7 @@ TEST(Signals, SigintBeforeTheFirstFrame) {
 // `nohup invfree ...`: the parent ignores SIGHUP, and the run must go on through one.
 TEST(Signals, IgnoredHangUpStaysIgnored) {
   const std::string dir = fresh_dir("nohup");
-  Process p({INVFREE_EXE, "simulate", "--steps", "100000000", "--obj", dir + "/obj"}, {},
+  Process p({::invfree::test::exe_path(), "simulate", "--steps", "100000000", "--obj", dir + "/obj"}, {},
             "trap '' HUP;");
   ASSERT_GT(p.pid(), 0);
   wait_for_files(dir + "/obj", ".obj", 10);
@@ -98,7 +99,7 @@ void signal_during_movie(int sig, bool whole_group, int expected_code) {
   if (!fs::exists("/usr/bin/ffmpeg") && !fs::exists("/usr/local/bin/ffmpeg"))
     GTEST_SKIP() << "ffmpeg is not installed";
   const std::string dir = fresh_dir("movie_signal_" + std::to_string(sig)) + "/f";
-  Process p({INVFREE_EXE, "render", "--frames", "60", "--size", "640x480", "--mp4", "--out", dir},
+  Process p({::invfree::test::exe_path(), "render", "--frames", "60", "--size", "640x480", "--mp4", "--out", dir},
             {}, "", in_own_process_group());
   ASSERT_GT(p.pid(), 0);
   ASSERT_TRUE(wait_for_name(dir, "movie.tmp")) << "ffmpeg never started";

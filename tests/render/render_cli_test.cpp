@@ -14,6 +14,7 @@
 
 #include "tests/render/image_compare.h"
 #include "tests/run_command.h"
+#include "tests/test_paths.h"
 
 namespace {
 
@@ -24,7 +25,7 @@ using invfree::test::slurp;
 
 // Runs `invfree ARGS` without a display (and with `env` first, if given).
 CommandResult run(const std::string& args, const std::string& env = "") {
-  return invfree::test::run_command(INVFREE_EXE, args, true, env);
+  return invfree::test::run_command(::invfree::test::exe_path(), args, true, env);
 }
 
 std::string fresh_dir(const std::string& name) {
@@ -53,8 +54,8 @@ TEST(RenderCli, WritesFramesAndFrameZeroIsTheInitialState) {
             (std::vector<std::string>{"frame_000000.png", "frame_000001.png", "frame_000002.png"}));
   invfree::test::RgbImage frame0;
   ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000000.png", &frame0));
-  const std::string message = invfree::test::check_golden(frame0, "compress_t0", INVFREE_GOLDEN_DIR,
-                                                          INVFREE_GOLDEN_FAILURE_DIR "/cli");
+  const std::string message = invfree::test::check_golden(frame0, "compress_t0", ::invfree::test::golden_dir(),
+                                                          std::string(::invfree::test::golden_failure_dir()) + "/cli");
   if (std::getenv("INVFREE_UPDATE_GOLDENS") == nullptr) {
     EXPECT_EQ(message, "");
   }

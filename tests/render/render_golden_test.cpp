@@ -22,6 +22,7 @@
 #include "scene_io/scene_file.h"
 #include "simulation.h"
 #include "tests/render/image_compare.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -52,7 +53,7 @@ test::RgbImage render_state(const Simulation& sim) {
 
 void expect_golden(const Simulation& sim, const std::string& name) {
   const std::string message =
-      test::check_golden(render_state(sim), name, INVFREE_GOLDEN_DIR, INVFREE_GOLDEN_FAILURE_DIR);
+      test::check_golden(render_state(sim), name, ::invfree::test::golden_dir(), ::invfree::test::golden_failure_dir());
   EXPECT_TRUE(message.empty()) << message;
 }
 

@@ -17,6 +17,7 @@
 
 #include "scene/initial_state.h"
 #include "scene_io/builtin_scenes.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -29,7 +30,7 @@ TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
   for (const auto& e : stress_scene_files()) embedded[std::string(e.name)] = std::string(e.text);
   size_t files = 0;
   for (const auto& f :
-       std::filesystem::directory_iterator(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes")) {
+       std::filesystem::directory_iterator(std::string(::invfree::test::source_dir()) + "/assets/scenes")) {
     if (f.path().extension() != ".toml") continue;
     ++files;
     const std::string stem = f.path().stem().string();

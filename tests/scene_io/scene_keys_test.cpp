@@ -20,12 +20,13 @@
 #include "scene_io/scene_file.h"
 #include "simulation.h"
 #include "tests/scene_io/scene_keys_doc.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
 
 std::string read_source_file(const std::string& relative) {
-  std::ifstream in(std::string(INVFREE_SOURCE_DIR) + "/" + relative, std::ios::binary);
+  std::ifstream in(std::string(::invfree::test::source_dir()) + "/" + relative, std::ios::binary);
   EXPECT_TRUE(in) << relative;
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -69,7 +70,7 @@ TEST(SceneKeysDoc, FuzzDictionaryHasEverySectionKeyAndChoice) {
 // Together, the seed inputs of tests/fuzz/corpus/ use every key (in a file or in --set).
 TEST(SceneKeysDoc, FuzzSeedsUseEveryKey) {
   std::set<std::string> used;
-  const std::string dir = std::string(INVFREE_SOURCE_DIR) + "/tests/fuzz/corpus";
+  const std::string dir = std::string(::invfree::test::source_dir()) + "/tests/fuzz/corpus";
   for (const auto& f : std::filesystem::directory_iterator(dir)) {
     if (f.path().filename().string().rfind("seed_", 0) != 0) continue;
     std::ifstream in(f.path());

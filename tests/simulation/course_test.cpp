@@ -19,6 +19,7 @@
 
 #include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -29,7 +30,7 @@ struct Sample {
 };
 
 std::vector<Sample> read_reference(const std::string& scene) {
-  std::ifstream in(std::string(INVFREE_SOURCE_DIR) + "/tests/data/course/" + scene + ".txt");
+  std::ifstream in(std::string(::invfree::test::source_dir()) + "/tests/data/course/" + scene + ".txt");
   std::vector<Sample> samples;
   std::string line;
   while (std::getline(in, line)) {

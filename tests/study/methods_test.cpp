@@ -12,6 +12,7 @@
 #include "app/study/stability.h"
 #include "app/study/stress_scenes.h"
 #include "scene_io/scene_file.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -109,7 +110,7 @@ TEST(Methods, EachMethodSetsItsModelSolverAndIntegrator) {
 TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
   std::set<std::string> on_disk;
   for (const auto& e :
-       std::filesystem::directory_iterator(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes")) {
+       std::filesystem::directory_iterator(std::string(::invfree::test::source_dir()) + "/assets/scenes")) {
     const std::string name = e.path().stem().string();
     if (name.rfind("stress-", 0) == 0 && e.path().extension() == ".toml") on_disk.insert(name);
   }
@@ -127,7 +128,7 @@ TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
     EXPECT_EQ(scene->name, s.name);
     // The file on disk is the very text that was embedded.
     const SceneLoad file =
-        load_scene(std::string(INVFREE_SOURCE_DIR) + "/assets/scenes/" + s.name + ".toml");
+        load_scene(std::string(::invfree::test::source_dir()) + "/assets/scenes/" + s.name + ".toml");
     ASSERT_TRUE(file.scene) << file.error;
     EXPECT_TRUE(*file.scene == *scene) << s.name << ": rebuild after editing a stress scene";
   }

@@ -20,6 +20,7 @@
 #include "app/study/error.h"
 #include "app/study/methods.h"
 #include "app/study/stress_scenes.h"
+#include "tests/test_paths.h"
 
 namespace invfree {
 namespace {
@@ -41,7 +42,7 @@ std::string slurp(const fs::path& p) {
 CliRun run(const std::string& args, const fs::path& dir) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
   const std::string cmd =
-      std::string(INVFREE_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
+      std::string(::invfree::test::exe_path()) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
