@@ -18,3 +18,4 @@
 #include "scene/initial_state.h"
 #include "scene/scene.h"
 #include "simulation.h"
+#include "triangle_fields.h"
