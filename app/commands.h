@@ -12,6 +12,8 @@ void register_render_command(CLI::App& app, int& exit_code);
 void register_study_command(CLI::App& app, int& exit_code);
 void register_stability_command(CLI::App& app, int& exit_code);
 void register_live_command(CLI::App& app, int& exit_code);
+void register_inspect_command(CLI::App& app, int& exit_code);
+void register_landscape_command(CLI::App& app, int& exit_code);
 // Plain `invfree` (no command): the live window when a display is available.
 int run_default_command();
 

@@ -277,12 +277,18 @@ void Renderer::set_text_scale(double scale) {
   gl_->gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous_texture));
 }
 
-FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f) {
+FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f,
+                               const CaptureOptions& capture) {
   FrameState f;
   f.scene = sim.scene;
   f.x = sim.x;
   f.triangles = sim.mesh.triangles;
   f.det_f = det_f ? *det_f : triangle_det_f(sim);
+  f.color_by = capture.color_by;
+  if (capture.color_by == TriangleField::DetF)
+    f.field = f.det_f;
+  else
+    triangle_field(sim, capture.color_by, &f.field);
   f.ceiling_y = sim.ceiling_y;
   f.time = sim.time;
   f.step = sim.step_count;

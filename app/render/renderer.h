@@ -44,6 +44,7 @@
 #include "app/render/camera.h"
 #include "app/render/gl_proc.h"
 #include "simulation.h"
+#include "triangle_fields.h"
 
 namespace invfree::render {
 
@@ -54,13 +55,26 @@ struct FrameState {
   VecX x;  // 2N node positions
   std::vector<std::array<int, 3>> triangles;
   std::vector<double> det_f;  // per triangle
+  // What the triangles are coloured by (core/triangle_fields.h) and its value per triangle
+  // (det F: the same as det_f).
+  TriangleField color_by = TriangleField::DetF;
+  std::vector<double> field;
+  // With stress glyphs asked for: each triangle's principal Cauchy stresses (larger
+  // first, Pa) and the first one's unit direction; empty otherwise.
+  std::vector<Vec2> principal_stress, principal_direction;
   double ceiling_y = 0.0;
   double time = 0.0;
   long step = 0;
 };
 
+// What a capture computes besides det F.
+struct CaptureOptions {
+  TriangleField color_by = TriangleField::DetF;
+  bool stress_glyphs = false;  // fill principal_stress and principal_direction
+};
 // det_f: the state's det F per triangle when the caller has it already (else computed).
-FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f = nullptr);
+FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f = nullptr,
+                               const CaptureOptions& capture = {});
 
 struct DrawOptions {
   bool edges = true;  // triangle edges (the outline is always drawn)
@@ -71,6 +85,11 @@ struct DrawOptions {
   double color_range = kDetFRange;
   bool color_range_auto = false;
   bool ring_inverted = true;  // a ring around every inverted triangle (det F <= 0)
+  // The inspected triangle (the live inspector's, `inspect`'s): outlined; -1: none.
+  int selected_triangle = -1;
+  // A pair of short strokes per triangle along its principal stresses, length by
+  // magnitude (needs a state captured with CaptureOptions::stress_glyphs).
+  bool stress_glyphs = false;
   // Replaces the scene's fixed camera (a live view's pan and zoom); pixels of this frame.
   std::optional<Camera> camera;
   // Where the frame goes: the renderer's own framebuffer (read_pixels) by default, or this
