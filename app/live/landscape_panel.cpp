@@ -1,0 +1,239 @@
+#include "app/live/landscape_panel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace invfree {
+
+namespace {
+
+ImU32 to_u32(Rgb c, float alpha = 1.0f) {
+  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  return IM_COL32(byte(c.r), byte(c.g), byte(c.b), byte(alpha));
+}
+
+constexpr ImU32 kInk = IM_COL32(26, 26, 31, 255);
+constexpr ImU32 kContour = IM_COL32(26, 26, 31, 150);
+constexpr ImU32 kDotFill = IM_COL32(13, 84, 242, 255);
+constexpr ImU32 kDotEdge = IM_COL32(255, 255, 255, 255);
+constexpr ImU32 kHatch = IM_COL32(255, 255, 255, 110);
+
+// How many vertices one draw list may still take: 16-bit indices without the backend's
+// vertex offsets (the web page's OpenGL ES 3 backend) address 65536 vertices in all.
+long vertex_room(const ImDrawList* dl) {
+  if (sizeof(ImDrawIdx) > 2 || (dl->Flags & ImDrawListFlags_AllowVtxOffset)) return 1L << 30;
+  return 65535L - static_cast<long>(dl->_VtxCurrentIdx);
+}
+
+// Screen mapping of the plot: sigma -> pixels.
+struct Plot {
+  LandscapeDomain d;
+  float x0 = 0, y0 = 0, ppu = 1;
+  float x(double s1) const { return x0 + static_cast<float>((s1 - d.s1_min) * ppu); }
+  float y(double s2) const { return y0 + static_cast<float>((d.s2_max - s2) * ppu); }
+  float x1() const { return x(d.s1_max); }
+  float y1() const { return y(d.s2_min); }
+};
+
+// The grid as one mesh: a vertex per node with its colour (Gouraud between them), two
+// triangles per cell; every `stride`-th node when the draw list has little room left.
+void heat_map(ImDrawList* dl, const Plot& p, const LandscapeCache& lc, const std::vector<ImU32>& colors,
+              long room) {
+  const LandscapeGrid& g = lc.grid;
+  int stride = 1;
+  auto nodes = [&](int s) { return long((g.n1 - 1) / s + 1) * long((g.n2 - 1) / s + 1); };
+  while (stride < 16 && nodes(stride) > room) stride *= 2;
+  if (nodes(stride) > room) return;
+  const int m1 = (g.n1 - 1) / stride + 1, m2 = (g.n2 - 1) / stride + 1;
+  const ImVec2 uv = ImGui::GetFontTexUvWhitePixel();
+  dl->PrimReserve((m1 - 1) * (m2 - 1) * 6, m1 * m2);
+  const ImDrawIdx base = static_cast<ImDrawIdx>(dl->_VtxCurrentIdx);
+  for (int b = 0; b < m2; ++b)
+    for (int a = 0; a < m1; ++a) {
+      const int i = a * stride, j = b * stride;
+      dl->PrimWriteVtx(ImVec2(p.x(g.s1(i)), p.y(g.s2(j))), uv, colors[static_cast<size_t>(i + g.n1 * j)]);
+    }
+  for (int b = 0; b + 1 < m2; ++b)
+    for (int a = 0; a + 1 < m1; ++a) {
+      const auto v = static_cast<ImDrawIdx>(base + a + m1 * b);
+      const auto up = static_cast<ImDrawIdx>(v + m1);
+      dl->PrimWriteIdx(v);
+      dl->PrimWriteIdx(static_cast<ImDrawIdx>(v + 1));
+      dl->PrimWriteIdx(static_cast<ImDrawIdx>(up + 1));
+      dl->PrimWriteIdx(v);
+      dl->PrimWriteIdx(static_cast<ImDrawIdx>(up + 1));
+      dl->PrimWriteIdx(up);
+    }
+}
+
+void dashed_line(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness) {
+  const float len = std::hypot(b.x - a.x, b.y - a.y);
+  if (len <= 0.0f) return;
+  const ImVec2 u((b.x - a.x) / len, (b.y - a.y) / len);
+  for (float t = 0.0f; t < len; t += 10.0f) {
+    const float e = std::min(t + 6.0f, len);
+    dl->AddLine(ImVec2(a.x + u.x * t, a.y + u.y * t), ImVec2(a.x + u.x * e, a.y + u.y * e), col,
+                thickness);
+  }
+}
+
+}  // namespace
+
+void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPair> points,
+                          int selected, ImVec2 size, LandscapePanelCache& cache) {
+  size.x = std::max(size.x, 80.0f);
+  size.y = std::max(size.y, 80.0f);
+  const LandscapeDomain domain = landscape_domain(model);
+  if (update_landscape_cache(model, lame, domain, kLandscapePanelPerUnit, &cache.landscape)) {
+    const LandscapeCache& lc = cache.landscape;
+    cache.node_colors.resize(lc.grid.psi.size());
+    for (size_t k = 0; k < lc.grid.psi.size(); ++k)
+      cache.node_colors[k] = to_u32(landscape_color(lc.scale, lc.grid.psi[k]));
+  }
+  const LandscapeCache& lc = cache.landscape;
+
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 p0 = ImGui::GetCursorScreenPos();
+  const float line = ImGui::GetTextLineHeight();
+  const ImU32 text = ImGui::GetColorU32(ImGuiCol_Text);
+
+  // Layout: the title line, the plot (square cells) with the s2 ticks on its left and the s1
+  // ticks under it, the colour bar and its labels on the right.
+  const std::string title = std::string("\u03a8(\u03c3\u2081, \u03c3\u2082): ") + model_label(model);
+  const float left = p0.x + ImGui::CalcTextSize("\u22120.5").x + 8.0f;
+  const float top = p0.y + line + 6.0f;
+  const float bar_w = 9.0f, bar_label = ImGui::CalcTextSize("100 kPa").x;
+  const float right = p0.x + size.x - bar_w - bar_label - 16.0f;
+  const float bottom = p0.y + size.y - line - 4.0f;
+  const double w_units = domain.s1_max - domain.s1_min, h_units = domain.s2_max - domain.s2_min;
+  Plot p;
+  p.d = domain;
+  p.x0 = left;
+  p.y0 = top;
+  p.ppu = static_cast<float>(std::max(1.0, std::min((right - left) / w_units, (bottom - top) / h_units)));
+  const float X0 = p.x0, Y0 = p.y0, X1 = p.x1(), Y1 = p.y1();
+
+  dl->AddText(p0, text, title.c_str());
+
+  // Vertex room: the heat map takes what the dots (8 each, up to kMaxDots) and the lines leave.
+  constexpr long kMaxDots = 4000, kLinesRoom = 12000;
+  const long room = vertex_room(dl);
+  const long dots_room = std::min<long>(kMaxDots, std::max<long>(0, (room - kLinesRoom) / 2 / 8));
+  dl->PushClipRect(ImVec2(X0, Y0), ImVec2(X1, Y1), true);
+  heat_map(dl, p, lc, cache.node_colors, room - kLinesRoom - dots_room * 8);
+
+  // Beyond neo-Hookean's wall: hatched.
+  const bool barrier = !model_allows_inversion(model);
+  if (barrier && domain.s2_min < 0.0) {
+    const float wy = p.y(0.0);
+    for (float k = X0 - (Y1 - wy); k < X1; k += 8.0f)
+      dl->AddLine(ImVec2(k, Y1), ImVec2(k + (Y1 - wy), wy), kHatch, 1.0f);
+  }
+  // Contours.
+  for (const ContourLine& c : lc.contours) {
+    cache.scratch.resize(c.points.size());
+    for (size_t k = 0; k < c.points.size(); ++k)
+      cache.scratch[k] = ImVec2(p.x(c.points[k].s1), p.y(c.points[k].s2));
+    dl->AddPolyline(cache.scratch.data(), static_cast<int>(cache.scratch.size()), kContour, 0, 1.0f);
+  }
+  // s1 s2 = 0: the wall (neo-Hookean), or the dashed det F = 0 the others cross.
+  if (domain.s2_min < 0.0) {
+    if (barrier)
+      dl->AddLine(ImVec2(X0, p.y(0.0)), ImVec2(X1, p.y(0.0)), kInk, 3.0f);
+    else
+      dashed_line(dl, ImVec2(X0, p.y(0.0)), ImVec2(X1, p.y(0.0)), kInk, 1.5f);
+  }
+  if (barrier) dl->AddLine(ImVec2(X0 + 1.5f, Y0), ImVec2(X0 + 1.5f, p.y(std::max(0.0, domain.s2_min))), kInk, 3.0f);
+  dl->AddCircle(ImVec2(p.x(1.0), p.y(1.0)), 4.5f, kInk, 12, 1.6f);
+
+  // The triangles: one dot per 3-pixel bin (more would cover each other), a white-edged
+  // blue square each.
+  const float bin = 3.0f;
+  const int bw = static_cast<int>((X1 - X0) / bin) + 2, bh = static_cast<int>((Y1 - Y0) / bin) + 2;
+  cache.occupied.assign(static_cast<size_t>(bw) * static_cast<size_t>(bh), 0);
+  int drawn = 0;
+  for (const SigmaPair& s : points) {
+    if (drawn >= dots_room) break;
+    if (!(s.s1 >= domain.s1_min && s.s1 <= domain.s1_max && s.s2 >= domain.s2_min &&
+          s.s2 <= domain.s2_max))
+      continue;
+    const float x = p.x(s.s1), y = p.y(s.s2);
+    const int bx = static_cast<int>((x - X0) / bin), by = static_cast<int>((y - Y0) / bin);
+    std::uint8_t& o = cache.occupied[static_cast<size_t>(bx + bw * by)];
+    if (o) continue;
+    o = 1;
+    dl->AddRectFilled(ImVec2(x - 2.5f, y - 2.5f), ImVec2(x + 2.5f, y + 2.5f), kDotEdge);
+    dl->AddRectFilled(ImVec2(x - 1.6f, y - 1.6f), ImVec2(x + 1.6f, y + 1.6f), kDotFill);
+    ++drawn;
+  }
+  cache.dots_drawn = drawn;
+  if (selected >= 0 && static_cast<size_t>(selected) < points.size()) {
+    const SigmaPair s = points[static_cast<size_t>(selected)];
+    const ImVec2 c(p.x(std::clamp(s.s1, domain.s1_min, domain.s1_max)),
+                   p.y(std::clamp(s.s2, domain.s2_min, domain.s2_max)));
+    dl->AddCircle(c, 7.0f, IM_COL32(255, 255, 255, 255), 16, 4.0f);
+    dl->AddCircle(c, 7.0f, IM_COL32(0, 0, 0, 255), 16, 2.0f);
+    dl->AddRectFilled(ImVec2(c.x - 2.5f, c.y - 2.5f), ImVec2(c.x + 2.5f, c.y + 2.5f), kDotFill);
+  }
+  dl->PopClipRect();
+  dl->AddRect(ImVec2(X0, Y0), ImVec2(X1, Y1), text, 0.0f, 0, 1.0f);
+
+  // Ticks: every 0.5 when there is room, else every 1.
+  const double step = p.ppu * 0.5f >= line * 1.4f ? 0.5 : 1.0;
+  char buf[32];
+  for (double v = std::ceil(domain.s1_min / step) * step; v <= domain.s1_max + 1e-9; v += step) {
+    std::snprintf(buf, sizeof buf, "%g", v);
+    const float w = ImGui::CalcTextSize(buf).x;
+    dl->AddLine(ImVec2(p.x(v), Y1), ImVec2(p.x(v), Y1 + 3.0f), text);
+    dl->AddText(ImVec2(p.x(v) - w / 2, Y1 + 3.0f), text, buf);
+  }
+  for (double v = std::ceil(domain.s2_min / step) * step; v <= domain.s2_max + 1e-9; v += step) {
+    std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-9 ? 0.0 : v);
+    const std::string label = buf[0] == '-' ? "\u2212" + std::string(buf + 1) : std::string(buf);
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    dl->AddLine(ImVec2(X0 - 3.0f, p.y(v)), ImVec2(X0, p.y(v)), text);
+    dl->AddText(ImVec2(X0 - 5.0f - w, p.y(v) - line / 2), text, label.c_str());
+  }
+  dl->AddText(ImVec2(X1 - ImGui::CalcTextSize("\u03c3\u2081").x, Y1 + 3.0f), text, "\u03c3\u2081");
+  dl->AddText(ImVec2(p0.x, Y0), text, "\u03c3\u2082");
+
+  // The colour bar: the map is piecewise linear in t, 8 pieces, each one gradient rectangle.
+  const float bx0 = X1 + 8.0f, bx1 = bx0 + bar_w;
+  for (int k = 0; k < 8; ++k) {
+    const double t0 = k / 8.0, t1 = (k + 1) / 8.0;
+    const float ya = Y1 - static_cast<float>(t1) * (Y1 - Y0), yb = Y1 - static_cast<float>(t0) * (Y1 - Y0);
+    const ImU32 hi = to_u32(landscape_scale_color(t1)), lo = to_u32(landscape_scale_color(t0));
+    dl->AddRectFilledMultiColor(ImVec2(bx0, ya), ImVec2(bx1, yb + 0.5f), hi, hi, lo, lo);
+  }
+  dl->AddRect(ImVec2(bx0, Y0), ImVec2(bx1, Y1), text);
+  for (double level : lc.levels) {
+    const float y = Y1 - static_cast<float>(landscape_scale_position(lc.scale, level)) * (Y1 - Y0);
+    dl->AddLine(ImVec2(bx0, y), ImVec2(bx1 + 3.0f, y), kInk);
+    const double mantissa = level / std::pow(10.0, std::floor(std::log10(level) + 1e-9));
+    if (std::abs(mantissa - 1.0) < 1e-6) {  // the decades: every other level, so they fit
+      const std::string l = format_pascal(level);
+      dl->AddText(ImVec2(bx1 + 5.0f, y - line / 2), text, l.c_str());
+    }
+  }
+
+  // The panel as one item, and what is under the mouse.
+  ImGui::InvisibleButton("##landscape", size);
+  if (ImGui::IsItemHovered()) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    if (m.x >= X0 && m.x <= X1 && m.y >= Y0 && m.y <= Y1) {
+      const double s1 = domain.s1_min + (m.x - X0) / p.ppu, s2 = domain.s2_max - (m.y - Y0) / p.ppu;
+      const std::string psi = format_pascal(landscape_psi(model, lame, s1, s2));
+      ImGui::SetTooltip("\u03c3\u2081 = %.3f   \u03c3\u2082 = %.3f\n\u03a8 = %s", s1, s2, psi.c_str());
+    }
+  }
+}
+
+void draw_landscape_panel(const Simulation& sim, int selected, ImVec2 size,
+                          LandscapePanelCache& cache) {
+  triangle_sigmas(sim, &cache.sigma);
+  draw_landscape_panel(sim.scene.model, sim.scene.lame, cache.sigma, selected, size, cache);
+}
+
+}  // namespace invfree
