@@ -56,10 +56,13 @@ bool energy_is_finite(Model m, const Mat2& F) {
   return model_allows_inversion(m) || determinant(F) > 0.0;
 }
 
-Mat2 cauchy_of(const Mat2& P, const Mat2& F, double J) {
+// P F^T / J. For the rotation-invariant models the skew part is rounding only and is
+// removed; linear elasticity's is real (the model is not rotation invariant) and kept.
+Mat2 cauchy_of(Model model, const Mat2& P, const Mat2& F, double J) {
   if (J == 0.0) return Mat2::Zero();
   const Mat2 c = P * F.transpose() / J;
-  return 0.5 * (c + c.transpose());  // symmetric up to rounding for isotropic models
+  if (model == Model::Linear) return c;
+  return 0.5 * (c + c.transpose());
 }
 
 }  // namespace
@@ -82,7 +85,7 @@ StressAnalysis analyze_stress(Model model, const Mat2& F, const Lame& lame) {
     r.P = M::first_piola(F, lame);
     r.eigenvalues = stress_derivative_eigenvalues<M>(r.svd.sigma, lame);
   });
-  r.cauchy = cauchy_of(r.P, F, r.J);
+  r.cauchy = cauchy_of(model, r.P, F, r.J);
   symmetric_eigen(r.cauchy, &r.principal_stress, &r.principal_directions);
   r.projected_eigenvalues = r.eigenvalues.cwiseMax(0.0);
   r.clamped = static_cast<int>((r.eigenvalues.array() < 0.0).count());
@@ -97,7 +100,7 @@ double signed_max_principal_stress(Model model, const Mat2& F, const Lame& lame)
   if (!energy_is_finite(model, F)) return 0.0;
   const double J = determinant(F);
   Vec2 values;
-  symmetric_eigen(cauchy_of(first_piola(model, F, lame), F, J), &values, nullptr);
+  symmetric_eigen(cauchy_of(model, first_piola(model, F, lame), F, J), &values, nullptr);
   return std::abs(values(0)) >= std::abs(values(1)) ? values(0) : values(1);
 }
 
@@ -117,18 +120,27 @@ Mat4 exact_stress_derivative(Model model, const Mat2& F, const Lame& lame) {
 }
 
 FiniteDifferenceErrors finite_difference_errors(Model model, const Mat2& F, const Lame& lame) {
+  if (!energy_is_finite(model, F)) return {};
+  return finite_difference_errors(
+      [&](const Mat2& G) { return energy_density(model, G, lame); }, first_piola(model, F, lame),
+      exact_stress_derivative(model, F, lame), F, !model_allows_inversion(model),
+      1e-4 * (lame.mu + std::abs(lame.lambda)));
+}
+
+FiniteDifferenceErrors finite_difference_errors(const std::function<double(const Mat2&)>& psi_of,
+                                                const Mat2& P, const Mat4& dPdF, const Mat2& F,
+                                                bool barrier, double floor) {
   FiniteDifferenceErrors e;
-  if (!energy_is_finite(model, F)) return e;
   const Vec2 sigma = polar_svd(F).sigma;
+  if (barrier && !(sigma(1) > 0.0)) return e;  // psi is +inf at F: nothing to difference
   const double big = std::max(std::abs(sigma(0)), 1e-8);
   // A barrier model must not be stepped across J = 0: steps well inside its smallest
   // singular value.
-  const double barrier_cap =
-      model_allows_inversion(model) ? std::numeric_limits<double>::infinity() : 1e-3 * sigma(1);
+  const double barrier_cap = barrier ? 1e-3 * sigma(1) : std::numeric_limits<double>::infinity();
   const double h1 = std::min(1e-5 * big, barrier_cap);
   const double h2 = std::min(1e-4 * big, barrier_cap);
   const Vec4 f = flatten(F);
-  const auto psi = [&](const Vec4& g) { return energy_density(model, unflatten(g), lame); };
+  const auto psi = [&](const Vec4& g) { return psi_of(unflatten(g)); };
   const Mat4 I = Mat4::Identity();
   Vec4 grad;
   for (int i = 0; i < 4; ++i)
@@ -145,11 +157,8 @@ FiniteDifferenceErrors finite_difference_errors(Model model, const Mat2& F, cons
           (4.0 * h2 * h2);
     }
   }
-  const double floor = 1e-6 * (lame.mu + std::abs(lame.lambda));
-  const Mat2 P = first_piola(model, F, lame);
-  const Mat4 C = exact_stress_derivative(model, F, lame);
   e.P = (P - e.P_fd).norm() / std::max(e.P_fd.norm(), floor);
-  e.dPdF = (C - e.dPdF_fd).norm() / std::max(e.dPdF_fd.norm(), floor);
+  e.dPdF = (dPdF - e.dPdF_fd).norm() / std::max(e.dPdF_fd.norm(), floor);
   return e;
 }
 

@@ -13,9 +13,16 @@
 //
 // finite_difference_errors checks P and dP/dF against central differences of Psi alone
 // (no derivative code involved): the relative Frobenius distance of each.
+//
+// The Cauchy stress is P F^T / J as the lecture defines it. For the rotation-invariant
+// models it is symmetric (up to rounding, which is removed); linear elasticity is not
+// rotation invariant, so its P F^T / J keeps the skew part it has (zero only at
+// symmetric F): that is the model's flaw, shown rather than hidden. The principal
+// stresses are the eigenpairs of the symmetric part (the whole tensor but for linear).
 #pragma once
 
 #include <array>
+#include <functional>
 
 #include "material/material.h"
 #include "material/polar_svd.h"
@@ -35,9 +42,9 @@ struct StressAnalysis {
   double J = 1.0;
   double psi = 0.0;  // energy density (+inf where a barrier model is inverted)
   Mat2 P = Mat2::Zero();
-  // P F^T / J, symmetric for these isotropic models; zero where J = 0 (undefined).
+  // P F^T / J (see above: symmetric but for linear elasticity); zero where J = 0 (undefined).
   Mat2 cauchy = Mat2::Zero();
-  Vec2 principal_stress = Vec2::Zero();             // the Cauchy stress's eigenvalues, larger first
+  Vec2 principal_stress = Vec2::Zero();             // cauchy's (symmetric part's) eigenvalues, larger first
   Mat2 principal_directions = Mat2::Identity();     // unit eigenvectors, columns in that order
   Vec4 eigenvalues = Vec4::Zero();                  // of dP/dF, in kEigenvalueNames' order
   Vec4 projected_eigenvalues = Vec4::Zero();        // after clamping the negative ones
@@ -57,15 +64,26 @@ double signed_max_principal_stress(Model model, const Mat2& F, const Lame& lame)
 int clamped_eigenvalue_count(Model model, const Mat2& F, const Lame& lame);
 
 struct FiniteDifferenceErrors {
-  double P = 0.0;     // |P - P_fd| / |P_fd| (Frobenius), |P_fd| floored at 1e-6 (mu + |lambda|)
+  // |P - P_fd| / |P_fd| (Frobenius), |P_fd| floored at 1e-4 (mu + |lambda|): the stress of a
+  // strain of 1e-4. Below it the differences' own rounding (about 1e-11 of the stiffness)
+  // would make the ratio noise over noise (at rest P = 0 exactly and P_fd is rounding).
+  double P = 0.0;
   double dPdF = 0.0;  // the same for dP/dF against second differences of Psi
   Mat2 P_fd = Mat2::Zero();
   Mat4 dPdF_fd = Mat4::Zero();  // symmetric, flattened [F11, F21, F12, F22]
 };
 
 // Central differences of Psi at F (steps scaled to F and to its smallest singular value,
-// so that a barrier model is never evaluated across J = 0).
+// so that a barrier model is never evaluated across J = 0), against the model's P and
+// unprojected dP/dF. All zero where Psi is +inf at F.
 FiniteDifferenceErrors finite_difference_errors(Model model, const Mat2& F, const Lame& lame);
+// The same check of any claimed P and dP/dF against any energy density `psi` (the model
+// version is this one with the model's functions; a test feeds it a wrong P to see the
+// check fail). `barrier`: psi is +inf for J <= 0, so the steps stay inside the smallest
+// singular value. `floor` bounds the denominators from below (a stress scale, > 0).
+FiniteDifferenceErrors finite_difference_errors(const std::function<double(const Mat2&)>& psi,
+                                                const Mat2& P, const Mat4& dPdF, const Mat2& F,
+                                                bool barrier, double floor);
 
 // dP/dF, unprojected, as the 4x4 the solver assembles (flattened [F11, F21, F12, F22]).
 Mat4 exact_stress_derivative(Model model, const Mat2& F, const Lame& lame);
