@@ -154,7 +154,8 @@ int run_landscape(const LandscapeOptions& opt) {
     });
     if (outside > 0)
       spec.notes.push_back(format_for_people(double(outside)) +
-                           " triangles lie outside the drawn domain and have no dot.");
+                           " triangles lie beyond the drawn domain (a stretch past 2): "
+                           "each is pinned to the domain's edge.");
   }
 
   if (auto e = write_canvas(opt.out, *landscape_chart(spec, *format)); !e.empty())

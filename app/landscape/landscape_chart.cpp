@@ -17,6 +17,7 @@ constexpr Rgb kInk{0.10f, 0.10f, 0.12f};
 constexpr Rgb kMuted{0.35f, 0.35f, 0.38f};
 constexpr Rgb kWhite{1.0f, 1.0f, 1.0f};
 constexpr Rgb kDot{0.05f, 0.33f, 0.95f};
+constexpr Rgb kPinned{0.70f, 0.80f, 1.0f};
 
 // Sizes in points (one pixel of a PNG). The heat map is drawn in cells of kCellPx: a cell's
 // colour is Psi at its centre, so the picture is exact to a cell, and the contours come from
@@ -52,6 +53,10 @@ struct PanelMap {
   double x(double s1) const { return x0 + (s1 - d.s1_min) * ppu; }
   double y(double s2) const { return y0 + (d.s2_max - s2) * ppu; }
 };
+
+bool inside_domain(const LandscapeDomain& d, const SigmaPair& p) {
+  return p.s1 >= d.s1_min && p.s1 <= d.s1_max && p.s2 >= d.s2_min && p.s2 <= d.s2_max;
+}
 
 std::string tick_text(double v) {
   if (std::abs(v) < 1e-9) return "0";
@@ -92,7 +97,7 @@ std::vector<std::string> standard_notes(const LandscapeChartSpec& spec) {
 }
 
 struct LegendItem {
-  enum Kind { Dot, Contour, Wall, Dashed, Rest } kind;
+  enum Kind { Dot, Pinned, Contour, Wall, Dashed, Rest } kind;
   std::string text;
 };
 
@@ -100,6 +105,10 @@ std::vector<LegendItem> legend_items(const LandscapeChartSpec& spec) {
   std::vector<LegendItem> items;
   if (!spec.points.empty())
     items.push_back({LegendItem::Dot, "a triangle's (\u03c3\u2081, \u03c3\u2082) now"});
+  const LandscapeDomain d = chart_domain(spec);
+  if (std::any_of(spec.points.begin(), spec.points.end(),
+                  [&](const SigmaPair& p) { return !inside_domain(d, p); }))
+    items.push_back({LegendItem::Pinned, "a triangle beyond the drawn domain, pinned to its edge"});
   items.push_back({LegendItem::Contour, "contour of \u03a8 (its level: a tick of the colour bar)"});
   if (any_barrier_model(spec))
     items.push_back({LegendItem::Wall,
@@ -313,18 +322,24 @@ void panel(Canvas& c, const Layout& l, size_t index, Model model, const Landscap
   // The triangles, one marker per 1.5-point cell (a dot drawn on a dot adds nothing, and a
   // vector file stays small at n_seg 256).
   c.push();
-  c.clip(X0 - 3, Y0 - 3, X1 + 3, Y1 + 3);
+  c.clip(X0 - 5, Y0 - 5, X1 + 5, Y1 + 5);
   const double bin = 1.5;
   const int bw = static_cast<int>((X1 - X0) / bin) + 3, bh = static_cast<int>((Y1 - Y0) / bin) + 3;
   std::vector<char> seen(static_cast<size_t>(bw) * bh, 0);
+  // A triangle beyond the domain (a stretch past 2) is pinned to its edge as a pale diamond,
+  // so a squashed body's sideways stretch is not silently missing.
   for (const SigmaPair& p : spec.points) {
-    if (!(p.s1 >= d.s1_min && p.s1 <= d.s1_max && p.s2 >= d.s2_min && p.s2 <= d.s2_max)) continue;
-    const double px = m.x(p.s1), py = m.y(p.s2);
+    const bool inside = inside_domain(d, p);
+    const double px = m.x(std::clamp(p.s1, d.s1_min, d.s1_max));
+    const double py = m.y(std::clamp(p.s2, d.s2_min, d.s2_max));
     const int bx = static_cast<int>((px - X0) / bin) + 1, by = static_cast<int>((py - Y0) / bin) + 1;
     char& s = seen[static_cast<size_t>(bx + bw * by)];
     if (s) continue;
     s = 1;
-    c.marker({px, py}, 2.8, MarkerShape::Circle, kDot, kWhite);
+    if (inside)
+      c.marker({px, py}, 2.8, MarkerShape::Circle, kDot, kWhite);
+    else
+      c.marker({px, py}, 3.4, MarkerShape::Diamond, kPinned, kDot);
   }
   c.pop();
 
@@ -375,6 +390,9 @@ void legend(Canvas& c, const Layout& l, const LandscapeChartSpec& spec) {
       case LegendItem::Dot:
         c.fill_rect(x, cy - 7, x + 24, cy + 7, landscape_scale_color(0.1));
         c.marker({x + 12.0, cy}, 2.8, MarkerShape::Circle, kDot, kWhite);
+        break;
+      case LegendItem::Pinned:
+        c.marker({x + 12.0, cy}, 3.4, MarkerShape::Diamond, kPinned, kDot);
         break;
       case LegendItem::Contour:
         c.line({x, cy}, {x + 24.0, cy}, 0.9, kInk, 0.6);

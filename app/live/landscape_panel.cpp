@@ -18,6 +18,7 @@ constexpr ImU32 kInk = IM_COL32(26, 26, 31, 255);
 constexpr ImU32 kContour = IM_COL32(26, 26, 31, 150);
 constexpr ImU32 kDotFill = IM_COL32(13, 84, 242, 255);
 constexpr ImU32 kDotEdge = IM_COL32(255, 255, 255, 255);
+constexpr ImU32 kDotPinned = IM_COL32(178, 204, 255, 255);
 constexpr ImU32 kHatch = IM_COL32(255, 255, 255, 110);
 
 // How many vertices one draw list may still take: 16-bit indices without the backend's
@@ -130,6 +131,10 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
     const float wy = p.y(0.0);
     for (float k = X0 - (Y1 - wy); k < X1; k += 8.0f)
       dl->AddLine(ImVec2(k, Y1), ImVec2(k + (Y1 - wy), wy), kHatch, 1.0f);
+    const char* inf = "\u03a8 = +\u221e (det F \u2264 0)";
+    const ImVec2 ts = ImGui::CalcTextSize(inf);
+    if (Y1 - wy > ts.y + 6.0f && X1 - X0 > ts.x + 8.0f)
+      dl->AddText(ImVec2(0.5f * (X0 + X1 - ts.x), 0.5f * (wy + Y1 - ts.y)), IM_COL32(255, 255, 255, 255), inf);
   }
   // Contours.
   for (const ContourLine& c : lc.contours) {
@@ -154,18 +159,22 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   const int bw = static_cast<int>((X1 - X0) / bin) + 2, bh = static_cast<int>((Y1 - Y0) / bin) + 2;
   cache.occupied.assign(static_cast<size_t>(bw) * static_cast<size_t>(bh), 0);
   int drawn = 0;
+  dl->PopClipRect();
+  dl->PushClipRect(ImVec2(X0 - 3.0f, Y0 - 3.0f), ImVec2(X1 + 3.0f, Y1 + 3.0f), true);
+  // A triangle beyond the domain (a stretch past 2) is pinned to its edge, pale.
   for (const SigmaPair& s : points) {
     if (drawn >= dots_room) break;
-    if (!(s.s1 >= domain.s1_min && s.s1 <= domain.s1_max && s.s2 >= domain.s2_min &&
-          s.s2 <= domain.s2_max))
-      continue;
-    const float x = p.x(s.s1), y = p.y(s.s2);
-    const int bx = static_cast<int>((x - X0) / bin), by = static_cast<int>((y - Y0) / bin);
+    const bool inside = s.s1 >= domain.s1_min && s.s1 <= domain.s1_max &&
+                        s.s2 >= domain.s2_min && s.s2 <= domain.s2_max;
+    const float x = p.x(std::clamp(s.s1, domain.s1_min, domain.s1_max));
+    const float y = p.y(std::clamp(s.s2, domain.s2_min, domain.s2_max));
+    const int bx = std::clamp(static_cast<int>((x - X0) / bin), 0, bw - 1);
+    const int by = std::clamp(static_cast<int>((y - Y0) / bin), 0, bh - 1);
     std::uint8_t& o = cache.occupied[static_cast<size_t>(bx + bw * by)];
     if (o) continue;
     o = 1;
-    dl->AddRectFilled(ImVec2(x - 2.5f, y - 2.5f), ImVec2(x + 2.5f, y + 2.5f), kDotEdge);
-    dl->AddRectFilled(ImVec2(x - 1.6f, y - 1.6f), ImVec2(x + 1.6f, y + 1.6f), kDotFill);
+    dl->AddRectFilled(ImVec2(x - 2.5f, y - 2.5f), ImVec2(x + 2.5f, y + 2.5f), inside ? kDotEdge : kDotFill);
+    dl->AddRectFilled(ImVec2(x - 1.6f, y - 1.6f), ImVec2(x + 1.6f, y + 1.6f), inside ? kDotFill : kDotPinned);
     ++drawn;
   }
   cache.dots_drawn = drawn;
@@ -196,8 +205,12 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
     dl->AddLine(ImVec2(X0 - 3.0f, p.y(v)), ImVec2(X0, p.y(v)), text);
     dl->AddText(ImVec2(X0 - 5.0f - w, p.y(v) - line / 2), text, label.c_str());
   }
-  dl->AddText(ImVec2(X1 - ImGui::CalcTextSize("\u03c3\u2081").x, Y1 + 3.0f), text, "\u03c3\u2081");
-  dl->AddText(ImVec2(p0.x, Y0), text, "\u03c3\u2082");
+  // The axis names sit between the last two ticks of their axis.
+  const double name_at1 = domain.s1_max - step / 2, name_at2 = domain.s2_max - step / 2;
+  dl->AddText(ImVec2(p.x(name_at1) - ImGui::CalcTextSize("\u03c3\u2081").x / 2, Y1 + 3.0f), text,
+              "\u03c3\u2081");
+  dl->AddText(ImVec2(X0 - 5.0f - ImGui::CalcTextSize("\u03c3\u2082").x, p.y(name_at2) - line / 2),
+              text, "\u03c3\u2082");
 
   // The colour bar: the map is piecewise linear in t, 8 pieces, each one gradient rectangle.
   const float bx0 = X1 + 8.0f, bx1 = bx0 + bar_w;

@@ -2,7 +2,8 @@
 // as `invfree landscape` (app/landscape/landscape.h: heat map of Psi(s1, s2) on the shared log
 // scale, contours, the line s1 s2 = 0 -- neo-Hookean's wall, hatched-grey "forbidden" beyond
 // it -- and the rest point), with every triangle's current (s1, s2) as a dot that moves as the
-// body does, the selected triangle's ringed. Drawn with Dear ImGui's draw list (no texture):
+// body does (a triangle stretched beyond the domain pinned, pale, to its edge), the selected
+// triangle's ringed. Drawn with Dear ImGui's draw list (no texture):
 // the heat map is one mesh with a colour per grid node.
 //
 // Use, inside any ImGui window (the live panel, a window of its own):
