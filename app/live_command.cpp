@@ -16,6 +16,7 @@
 #include "app/scene_options.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
+#include "triangle_fields.h"
 
 namespace invfree {
 
@@ -27,6 +28,7 @@ struct LiveCommandOptions {
   std::string size = "1280x720";
   std::string det_f_panel = "beside";  // beside | over | hidden
   std::string color_range = "fixed";   // render::parse_color_range_mode
+  std::string color_by = "det-f";      // kTriangleFieldNames
   live::LiveOptions live;
 };
 
@@ -87,6 +89,16 @@ int run_live_command(const LiveCommandOptions& opt) {
                    : opt.det_f_panel == "hidden" ? render::PanelMode::Hidden
                                                  : render::PanelMode::Side;
   lo.color_range = *render::parse_color_range_mode(opt.color_range);
+  lo.color_by = *enum_from_name(kTriangleFieldNames, opt.color_by);
+  if (lo.select_triangle >= 0) {
+    // Checked before the window opens, as the outputs are: an index off the mesh is a
+    // mistake in the command line (the mesh is built once here to count its triangles).
+    const int n = make_simulation(lo.scenes[lo.selected].scene).mesh.triangle_count();
+    if (lo.select_triangle >= n)
+      return fail(exit_code::kBadInput, "--select-triangle " + std::to_string(lo.select_triangle) +
+                                            ": the scene's mesh has " + std::to_string(n) +
+                                            " triangles (0 to " + std::to_string(n - 1) + ")");
+  }
   // Scripted runs draw as fast as they can: no waiting for the screen's refresh.
   if (lo.frames > 0 || lo.bench) lo.vsync = false;
   lo.stop = [] { return interrupted(); };
@@ -143,6 +155,22 @@ void register_live_command(CLI::App& app, int& exit_code) {
                   "(automatic per frame) (key C)")
       ->capture_default_str()
       ->check(CLI::IsMember({"fixed", "run", "frame"}));
+  std::vector<std::string> fields;
+  for (const auto& f : kTriangleFieldNames) fields.emplace_back(f.name);
+  cmd->add_option("--color-by", opt.color_by,
+                  "colour the triangles by det F, psi (energy density), stress (the principal "
+                  "Cauchy stress of largest magnitude, signed) or clamped (eigenvalues of dP/dF "
+                  "the projection clamps); also in the panel's view section")
+      ->capture_default_str()
+      ->check(CLI::IsMember(fields));
+  cmd->add_flag("--stress-glyphs", opt.live.stress_glyphs,
+                "draw each triangle's principal stresses as a pair of strokes");
+  cmd->add_flag("--landscape", opt.live.show_landscape,
+                "open the energy landscape's window (psi over the singular values)");
+  cmd->add_option("--select-triangle", opt.live.select_triangle,
+                  "inspect this triangle from the start (as a click on it does; Esc releases it)")
+      ->type_name("T")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--bench", opt.live.bench,
                 "print frames per second (with the simulation running) at the end");
   cmd->add_flag("--paused", opt.live.paused, "start paused");

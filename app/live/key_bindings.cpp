@@ -24,10 +24,11 @@ constexpr KeyBinding kKeys[] = {
     {GLFW_KEY_D, 0, Action::CycleDetFPanel, "D", "det F panel: beside / over the picture / hidden"},
     {GLFW_KEY_C, 0, Action::CycleColorRange, "C",
      "det F colours: fixed 0.25 to 4 / auto over the run / auto per frame"},
-    {GLFW_KEY_ESCAPE, 0, Action::Quit, "Esc", "quit"},
+    {GLFW_KEY_ESCAPE, 0, Action::Quit, "Esc", "release the inspected triangle; quit when none is"},
 };
 
 constexpr MouseBinding kMouse[] = {
+    {"click a triangle", "inspect it (outlined; the Inspector; empty space releases it)"},
     {"left-drag a node", "pull it (a spring toward the cursor, only while dragging)"},
     {"left/right-drag", "pan the view"},
     {"wheel", "zoom about the cursor"},

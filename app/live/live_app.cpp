@@ -18,13 +18,16 @@
 #include "app/live/auto_fit_view.h"
 #include "app/live/frame_rate.h"
 #include "app/live/frame_recording.h"
+#include "app/live/inspector_panel.h"
 #include "app/live/input_injection.h"
 #include "app/live/key_bindings.h"
+#include "app/live/landscape_window.h"
 #include "app/live/live_panel.h"
 #include "app/live/live_window.h"
 #include "app/live/mouse_gestures.h"
 #include "app/live/window_capture.h"
 #include "app/render/renderer.h"
+#include "triangle_fields.h"
 
 namespace invfree::live {
 
@@ -61,6 +64,9 @@ struct LiveAppImpl {
   AutoFitView view;
   InputInjection injection;
   MouseGestures mouse;
+  TriangleInspection inspection;
+  LandscapePanelCache landscape_cache;
+  long empty_clicks = 0;
   FrameRecording recording;
   bool screenshot_requested = false;
   std::vector<std::string> messages;
@@ -122,6 +128,12 @@ struct LiveAppImpl {
 
   void handle_action(Action a);
   void handle_keys();
+  void pick(const Vec2& world);
+  void select(int t) {
+    inspection.select(controller->simulation(), t, controller->mesh_generation());
+    panel.place_inspector = true;
+  }
+  void draw_inspection_windows(const WidgetRect& area);
 
   bool start_recording(const std::string& dir, bool force = false) {
     const bool started = recording.start(dir, force, sayer());
@@ -231,8 +243,11 @@ void LiveAppImpl::handle_action(Action a) {
       panel.color_range =
           static_cast<render::ColorRangeMode>((static_cast<int>(panel.color_range) + 1) % 3);
       break;
-    case Action::Quit:
-      window.request_close();
+    case Action::Quit:  // Esc: first lets go of the inspected triangle
+      if (inspection.selected() >= 0)
+        inspection.release();
+      else
+        window.request_close();
       break;
   }
 }
@@ -247,8 +262,37 @@ void LiveAppImpl::handle_keys() {
   }
 }
 
-// The ImGui frame: input, the panel and what it asks for, the help overlay, the banners
-// over the picture and the grab markers.
+// A click on the picture: the triangle under it is inspected; a click on empty space lets
+// go of the one inspected, or (none was) is counted for the web page's tap.
+void LiveAppImpl::pick(const Vec2& world) {
+  const Simulation& sim = controller->simulation();
+  if (const std::optional<int> t = triangle_at(sim, world))
+    select(*t);
+  else if (inspection.selected() >= 0)
+    inspection.release();
+  else
+    ++empty_clicks;
+}
+
+// The inspector's window over the picture, on the side away from its triangle (closing it,
+// its x, lets go of the triangle), and the energy landscape's window.
+void LiveAppImpl::draw_inspection_windows(const WidgetRect& area) {
+  const Simulation& sim = controller->simulation();
+  inspection.update(sim, controller->mesh_generation());
+  bool inspector_left = false;
+  if (const Inspected* in = inspection.inspected()) {
+    Vec2 c = Vec2::Zero();
+    for (int node : sim.mesh.triangles[static_cast<size_t>(in->triangle)])
+      c += sim.x.segment<2>(2 * node);
+    const Vec2 p = view.transform().to_screen(c / 3.0) / window.pixel_scale();
+    inspector_left = p.x() > 0.5 * (area.x0 + area.x1);
+    if (!draw_inspector(*in, panel, area, inspector_left)) inspection.release();
+  }
+  draw_landscape_window(sim, inspection.selected(), panel, landscape_cache);
+}
+
+// The ImGui frame: input, the panel and what it asks for, the inspector, the help overlay,
+// the banners over the picture and the grab markers.
 void LiveAppImpl::build_ui(const Injection* inject) {
   apply_ui_scale();
   window.begin_imgui_frame();
@@ -256,7 +300,8 @@ void LiveAppImpl::build_ui(const Injection* inject) {
   ImGui::NewFrame();
   handle_keys();
   const double ps = window.pixel_scale();
-  mouse.handle(*controller, view, visible_rect(), ps);
+  if (const std::optional<Vec2> click = mouse.handle(*controller, view, visible_rect(), ps))
+    pick(*click);
 
   const PanelRequests req = draw_panel(*controller, panel);
   if (req.screenshot) screenshot_requested = true;
@@ -265,11 +310,12 @@ void LiveAppImpl::build_ui(const Injection* inject) {
   if (req.quit) handle_action(Action::Quit);
   // A new scene or mesh: show it whole (even after the user chose a view).
   view.follow_scene(*controller, visible_rect());
-  draw_help_overlay(panel);
   const render::PixelRect r = visible_rect();
-  draw_banners(*controller, panel,
-               {static_cast<float>(r.x / ps), static_cast<float>(r.y / ps),
-                static_cast<float>((r.x + r.w) / ps), static_cast<float>((r.y + r.h) / ps)});
+  const WidgetRect area{static_cast<float>(r.x / ps), static_cast<float>(r.y / ps),
+                        static_cast<float>((r.x + r.w) / ps), static_cast<float>((r.y + r.h) / ps)};
+  draw_inspection_windows(area);
+  draw_help_overlay(panel);
+  draw_banners(*controller, panel, area);
   mouse.draw_markers(*controller, view.transform(), ps);
   ImGui::Render();
 }
@@ -287,10 +333,12 @@ std::future<void> LiveAppImpl::draw_picture() {
   draw_options.edges = render::edges_legible(controller->settings(), v.pixels_per_metre);
   draw_options.panel = panel.det_f_panel != render::PanelMode::Hidden;
   draw_options.panel_overlay = panel.det_f_panel == render::PanelMode::Overlay;
+  draw_options.selected_triangle = inspection.selected();
+  draw_options.stress_glyphs = panel.stress_glyphs;
   color_range.mode = panel.color_range;
   color_range.apply(controller->stats().min_det_f, controller->stats().max_det_f, &draw_options);
-  const render::FrameState state =
-      render::capture_frame_state(controller->simulation(), &controller->det_f());
+  const render::FrameState state = render::capture_frame_state(
+      controller->simulation(), &controller->det_f(), {panel.color_by, panel.stress_glyphs});
   const long revision = controller->revision();
   std::future<void> stepping = start_steps();
   renderer->draw(state, draw_options);
@@ -349,6 +397,10 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   a.panel.visible = !options.hide_panel;
   a.panel.det_f_panel = options.det_f_panel;
   a.panel.color_range = options.color_range;
+  a.panel.color_by = options.color_by;
+  a.panel.stress_glyphs = options.stress_glyphs;
+  a.panel.show_landscape = options.show_landscape;
+  if (options.select_triangle >= 0) a.select(options.select_triangle);
   a.panel.ui_scale = options.ui_scale > 0.0f ? options.ui_scale : a.window.default_ui_scale();
   a.apply_ui_scale();
   a.panel.max_segments = options.max_segments;
@@ -388,6 +440,25 @@ const std::vector<std::string>& LiveApp::messages() const {
 }
 LiveApp::View LiveApp::view() const {
   return {impl_->panel.ui_scale, impl_->panel.det_f_panel, impl_->panel.color_range};
+}
+const Inspected* LiveApp::inspected() const {
+  return impl_->inspection.inspected();
+}
+void LiveApp::select_triangle(int t) {
+  LiveAppImpl& a = *impl_;
+  if (t >= 0 && t < a.controller->simulation().mesh.triangle_count())
+    a.select(t);
+  else
+    a.inspection.release();
+}
+long LiveApp::empty_clicks() const {
+  return impl_->empty_clicks;
+}
+TriangleField LiveApp::color_by() const {
+  return impl_->panel.color_by;
+}
+void LiveApp::set_color_by(TriangleField field) {
+  impl_->panel.color_by = field;
 }
 
 }  // namespace invfree::live

@@ -20,9 +20,11 @@
 #include <vector>
 
 #include "app/live/live_controller.h"
+#include "app/live/triangle_inspection.h"
 #include "app/plot/chart.h"
 #include "app/render/camera.h"
 #include "app/render/view_choices.h"
+#include "triangle_fields.h"
 
 namespace invfree::live {
 
@@ -52,6 +54,10 @@ struct LiveOptions {
   float ui_scale = 0.0f;
   render::PanelMode det_f_panel = render::PanelMode::Side;
   render::ColorRangeMode color_range = render::ColorRangeMode::Fixed;
+  TriangleField color_by = TriangleField::DetF;  // what the triangles are coloured by
+  bool stress_glyphs = false;
+  bool show_landscape = false;  // the energy landscape's window
+  int select_triangle = -1;     // >= 0: inspect this triangle from the start
   bool vsync = true;  // off for --frames and --bench
   int width = 1280, height = 720;
   int steps_per_frame = 1;
@@ -110,6 +116,17 @@ class LiveApp {
     render::ColorRangeMode color_range;
   };
   View view() const;
+  // The inspector's values as last shown (this frame's state, before its steps), or null
+  // with no triangle selected.
+  const Inspected* inspected() const;
+  // Selects triangle t (as a click on it does); -1 or an index off the mesh releases.
+  void select_triangle(int t);
+  // Left clicks on the picture that hit no triangle while none was selected (the web
+  // page's tap there plays or pauses); a click that selects or releases is not counted.
+  long empty_clicks() const;
+  // What the panel's view section colours the triangles by (its combo, or this setter).
+  TriangleField color_by() const;
+  void set_color_by(TriangleField field);
 
  private:
   LiveApp();

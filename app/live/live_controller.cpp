@@ -94,6 +94,7 @@ bool LiveController::apply(const SceneDef& next) {
     return false;
   }
   if (needs_new_mesh(sim_.scene, next)) {
+    ++mesh_generation_;
     restart(next);
     note = "mesh rebuilt (n_seg = " + std::to_string(next.n_seg) +
            "); restarted from the initial state";
@@ -106,6 +107,7 @@ bool LiveController::apply(const SceneDef& next) {
 
 void LiveController::select_scene(int index) {
   selected_ = std::clamp(index, 0, static_cast<int>(scenes_.size()) - 1);
+  ++mesh_generation_;
   restart(scenes_[selected_].scene);
   note.clear();
 }

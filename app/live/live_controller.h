@@ -87,6 +87,9 @@ class LiveController {
   // Changes whenever the state or the settings change (a picture of an unchanged
   // revision need not be drawn again).
   long revision() const { return revision_; }
+  // Changes whenever the mesh is rebuilt (another scene, n_seg, springs <-> triangles), not
+  // on a reset: a triangle's index names the same triangle while it stays.
+  long mesh_generation() const { return mesh_generation_; }
   // Node closest to `p` within `radius` (world units), or -1.
   int nearest_node(const Vec2& p, double radius) const;
 
@@ -113,6 +116,7 @@ class LiveController {
   std::array<StatsHistory, 4> energy_history_{StatsHistory(400), StatsHistory(400),
                                               StatsHistory(400), StatsHistory(400)};
   long revision_ = 0;
+  long mesh_generation_ = 0;
   long steps_total_ = 0;
   double step_ms_total_ = 0.0;
   int pull_node_ = -1;

@@ -491,7 +491,35 @@ void stats_section(const LiveController& lc, PanelState& ps) {
   }
 }
 
-// The view: UI scale, where the det F panel goes, the det F colour scale.
+// What the lecture teaches, on the triangles (core/triangle_fields.h), in one row: the
+// colouring, the principal-stress glyphs, the energy landscape's window.
+void color_by_row(PanelState& ps) {
+  static const char* const kFields[] = {"colour: det F", "colour: ψ", "colour: stress",
+                                        "colour: clamped"};
+  int field = static_cast<int>(ps.color_by);
+  ImGui::SetNextItemWidth(150.0f * ps.ui_scale);
+  if (ImGui::Combo("##color_by", &field, kFields, IM_ARRAYSIZE(kFields)))
+    ps.color_by = static_cast<TriangleField>(field);
+  remember(ps, "color_by");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "what colours the triangles: det F; ψ, the energy density; the principal Cauchy "
+        "stress of largest magnitude (tension red, compression blue); or how many of ∂P/∂F's "
+        "eigenvalues the PSD projection clamps");
+  ImGui::SameLine();
+  ImGui::Checkbox("glyphs", &ps.stress_glyphs);
+  remember(ps, "stress_glyphs");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("principal stresses: a pair of strokes per triangle, length by magnitude");
+  ImGui::SameLine();
+  ImGui::Checkbox("landscape", &ps.show_landscape);
+  remember(ps, "landscape");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the energy landscape: ψ over the singular values (σ₁, σ₂), every "
+                      "triangle a dot");
+}
+
+// The view: UI scale, where the det F panel goes, the det F colour scale, the colouring.
 void view_section(PanelState& ps) {
   // Applied when released (fonts are rebuilt), in steps of 0.25.
   float scale = ps.ui_scale_edit > 0.0f ? ps.ui_scale_edit : ps.ui_scale;
@@ -529,6 +557,7 @@ void view_section(PanelState& ps) {
     ImGui::SetTooltip(
         "det F colour scale: fixed 0.25 to 4, or symmetric in log det F around 1 "
         "from the run so far or from this frame (key C)");
+  color_by_row(ps);
 }
 
 }  // namespace

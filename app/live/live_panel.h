@@ -3,6 +3,8 @@
 // settings, the grab spring, the statistics with plots of the last steps, and the output
 // buttons. Every edit goes through LiveController::apply with the limits of
 // param_limits.h; a clamped or refused edit shows its note at the top of the panel.
+// The view section also picks what the triangles are coloured by (det F, Psi, stress,
+// clamped), the principal-stress glyphs and the energy landscape's window.
 // Also the F1 help overlay and the PAUSED / failure / note banners.
 // Sliders show their value in the half of the slider the handle is not in, and Ctrl+click
 // types a value into any of them.
@@ -17,6 +19,7 @@
 #include "app/live/live_controller.h"
 #include "app/render/camera.h"
 #include "app/render/view_choices.h"
+#include "triangle_fields.h"
 
 struct ImFont;
 
@@ -32,6 +35,12 @@ struct PanelState {
   float ui_scale_edit = -1.0f;  // the UI scale slider's value while it is being dragged
   render::PanelMode det_f_panel = render::PanelMode::Side;
   render::ColorRangeMode color_range = render::ColorRangeMode::Fixed;
+  // What the triangles are coloured by (det F as before), the principal-stress glyphs, and
+  // the energy landscape's window.
+  TriangleField color_by = TriangleField::DetF;
+  bool stress_glyphs = false;
+  bool show_landscape = false;
+  bool place_inspector = false;  // a triangle was just picked: the inspector goes beside it
   // Ctrl+click on a slider types its value: the slider's name while typing, the field's
   // value and the frames it has been open (focus arrives a frame later).
   std::string typing;

@@ -164,7 +164,7 @@ ImFont* LiveWindow::set_ui_scale(float scale) {
   if (glyph_ranges_.empty()) {
     ImFontGlyphRangesBuilder builder;
     builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
-    builder.AddText("μλνσψΨΔ≤≥·×−²");
+    builder.AddText("μλνσψΨΔ≤≥·×−²∂∞→₁₂");  // the inspector: ∂P/∂F, +∞, σ₁
     builder.BuildRanges(&glyph_ranges_);
   }
   io.Fonts->Clear();

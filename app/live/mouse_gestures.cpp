@@ -11,20 +11,20 @@ constexpr double kGrabRadiusPixels = 14.0;
 
 }  // namespace
 
-void MouseGestures::handle(LiveController& lc, AutoFitView& view, const render::PixelRect& visible,
-                           double ps) {
+std::optional<Vec2> MouseGestures::handle(LiveController& lc, AutoFitView& view,
+                                          const render::PixelRect& visible, double ps) {
   const ImGuiIO& io = ImGui::GetIO();
   const Vec2 mouse(io.MousePos.x * ps, io.MousePos.y * ps);
-  if (drag_ != Drag::None) {
-    continue_drag(lc, view, visible, mouse, ps);
-    return;
-  }
+  if (drag_ != Drag::None) return continue_drag(lc, view, visible, mouse, ps);
   const bool mouse_valid = ImGui::IsMousePosValid();
   if (mouse_valid) note_pointer(io);
-  if (io.WantCaptureMouse || !mouse_valid) return;
+  if (io.WantCaptureMouse || !mouse_valid) return std::nullopt;
   const ViewTransform& v = view.transform();
   if (io.MouseWheel != 0.0f) view.zoom_at(mouse, std::pow(1.15, io.MouseWheel));
+  click_possible_ = false;
   if (io.MouseClicked[0]) {
+    click_possible_ = true;
+    press_pos_ = io.MousePos;
     const int node =
         lc.nearest_node(v.to_world(mouse), kGrabRadiusPixels * ps / v.pixels_per_metre);
     if (node >= 0) {
@@ -37,18 +37,26 @@ void MouseGestures::handle(LiveController& lc, AutoFitView& view, const render::
     drag_ = Drag::Pan;
   }
   last_mouse_ = mouse;
+  return std::nullopt;
 }
 
 // A drag lasts while its button is held (any button for a pan) and the pointer is in the
-// window.
-void MouseGestures::continue_drag(LiveController& lc, AutoFitView& view,
-                                  const render::PixelRect& visible, const Vec2& mouse, double ps) {
+// window. A left one that never left kClickSlop of its press ends as a click there.
+std::optional<Vec2> MouseGestures::continue_drag(LiveController& lc, AutoFitView& view,
+                                                 const render::PixelRect& visible,
+                                                 const Vec2& mouse, double ps) {
   const ImGuiIO& io = ImGui::GetIO();
   const bool held = drag_ == Drag::Pull ? io.MouseDown[0]
                                         : (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
-  if (!held || !ImGui::IsMousePosValid()) {
+  const bool valid = ImGui::IsMousePosValid();
+  if (valid && std::hypot(io.MousePos.x - press_pos_.x, io.MousePos.y - press_pos_.y) > kClickSlop)
+    click_possible_ = false;
+  std::optional<Vec2> click;
+  if (!held || !valid) {
     if (drag_ == Drag::Pull) lc.end_pull();
     drag_ = Drag::None;
+    if (click_possible_ && valid) click = view.transform().to_world(mouse);
+    click_possible_ = false;
   } else if (drag_ == Drag::Pull) {
     // The target stays in the visible part of the picture: a body pulled toward a panel
     // stops at its edge instead of sliding behind it.
@@ -61,6 +69,7 @@ void MouseGestures::continue_drag(LiveController& lc, AutoFitView& view,
     view.pan(mouse.x() - last_mouse_.x(), mouse.y() - last_mouse_.y());
   }
   last_mouse_ = mouse;
+  return click;
 }
 
 void MouseGestures::note_pointer(const ImGuiIO& io) {

@@ -7,16 +7,20 @@
 // n_seg=N starts with that mesh (through the controller's checks: a value they refuse
 // leaves the scene's mesh, and the panel's note says why), scene=NAME picks a built-in
 // scene.
-// Touch (shell.html): a finger is the left mouse button; a short tap on the picture plays or
-// pauses.
+// Touch (shell.html): a finger is the left mouse button; a short tap on a triangle inspects it
+// (as a click does on the desktop), a tap on empty space releases the inspected one, or, with
+// none inspected, plays or pauses.
 // Outputs: the canvas, screenshots as downloads, and `window.invfree` after every frame (frames,
-// steps, min det F, mu, lambda, n_seg, frames/s, the panel's widget rectangles, note, banner), read
+// steps, min det F, mu, lambda, n_seg, frames/s, the colouring, the triangle count, the
+// inspected triangle's values as `selected`, the panel's widget rectangles, note, banner), read
 // by the tests in a headless browser (tests/web) and by anyone curious in the browser's console.
+// Module._invfree_triangle_window_x/y(t) give a triangle's centroid in the page's pixels (for a
+// test's tap).
 #include <GLFW/glfw3.h>
 #include <emscripten.h>
-#include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -28,6 +32,7 @@
 #include "linalg/parallel.h"
 #include "scene/scene.h"
 #include "scene_io/builtin_scenes.h"
+#include "triangle_fields.h"
 
 namespace {
 
@@ -43,7 +48,11 @@ struct Page {
   std::unique_ptr<LiveApp> app;
   bool failed = false;
   size_t messages_seen = 0;
-  bool tap = false;  // a short tap on the canvas since the last frame (shell.html)
+  // Frames left in which a short tap (shell.html) may still turn out a click on empty space
+  // with nothing inspected (ImGui sees its release a frame or two after the tap's events),
+  // and the count of such clicks when it came.
+  int tap_frames = 0;
+  long empty_clicks_at_tap = 0;
   // frames/s over the last second, for window.invfree
   double fps_start_ms = 0.0, fps = 0.0;
   long fps_frames = 0;
@@ -148,6 +157,39 @@ void follow_browser_window() {
   if (w != want_w || h != want_h) glfwSetWindowSize(window, want_w, want_h);
 }
 
+// A number for JSON (which has no inf or nan: null).
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+// The inspected triangle as JSON: null, or its index, the step, J, psi, the singular values,
+// the four eigenvalues of dP/dF before and after the projection, and how many it clamped
+// (for a mass-spring scene only the index and "elastic":false).
+std::string selected_json(const LiveApp& app) {
+  const invfree::live::Inspected* in = app.inspected();
+  if (!in) return "null";
+  std::string j = "{\"triangle\":" + std::to_string(in->triangle) +
+                  ",\"step\":" + std::to_string(in->step) +
+                  ",\"elastic\":" + (in->elastic ? "true" : "false");
+  if (in->elastic) {
+    const invfree::StressAnalysis& a = in->analysis;
+    const auto list = [](auto v) {
+      std::string l = "[";
+      for (int k = 0; k < v.size(); ++k) l += (k ? "," : "") + json_number(v(k));
+      return l + "]";
+    };
+    j += ",\"J\":" + json_number(a.J) + ",\"psi\":" + json_number(a.psi) +
+         ",\"sigma\":" + list(a.svd.sigma) + ",\"eigenvalues\":" + list(a.eigenvalues) +
+         ",\"projected_eigenvalues\":" + list(a.projected_eigenvalues) +
+         ",\"clamped\":" + std::to_string(a.clamped) +
+         ",\"finite\":" + (a.finite ? "true" : "false");
+  }
+  return j + "}";
+}
+
 void publish_state(Page& p) {
   const invfree::live::LiveController& lc = p.app->controller();
   const double now = emscripten_get_now();
@@ -169,11 +211,15 @@ void publish_state(Page& p) {
   char head[512];
   std::snprintf(head, sizeof head,
                 "{\"frames\":%ld,\"steps\":%ld,\"min_det_f\":%.17g,\"mu\":%.17g,\"lambda\":%.17g,"
-                "\"n_seg\":%d,\"playing\":%s,\"fps\":%.2f,\"step_ms\":%.3f,\"scene\":\"%s\",",
+                "\"n_seg\":%d,\"playing\":%s,\"fps\":%.2f,\"step_ms\":%.3f,\"scene\":\"%s\","
+                "\"color_by\":\"%s\",\"triangles\":%d,",
                 p.app->frames_drawn(), steps, lc.stats().min_det_f, s.lame.mu, s.lame.lambda,
                 s.n_seg, lc.playing() ? "true" : "false", p.fps,
-                steps ? lc.step_ms_total() / steps : 0.0, s.name.c_str());
-  const std::string json = head + std::string("\"widgets\":{") + widgets + "}}";
+                steps ? lc.step_ms_total() / steps : 0.0, s.name.c_str(),
+                invfree::enum_name(invfree::kTriangleFieldNames, p.app->color_by()),
+                lc.simulation().mesh.triangle_count());
+  const std::string json = head + std::string("\"selected\":") + selected_json(*p.app) +
+                           ",\"widgets\":{" + widgets + "}}";
   // note and banner are free text: handed over as strings, not spliced into the JSON.
   // clang-format off
   EM_ASM({
@@ -229,15 +275,20 @@ void page_frame(void* arg) {
   }
   follow_browser_window();
   p.app->frame();
-  // A tap on the picture plays or pauses; on the panel it is only the click it also was.
-  // Decided after the frame, once ImGui has seen where the touch went: a slow frame can
-  // bring the touch's move, press and release all at once, and ImGui's view from before
-  // them still has the pointer where the last touch left it (on the panel, say).
-  if (p.tap && !ImGui::GetIO().WantCaptureMouse) {
-    invfree::live::LiveController& lc = p.app->controller();
-    lc.set_playing(!lc.playing());
+  // A tap is also a click (the touch's mouse events): on a triangle it inspects it, on
+  // empty space it releases the inspected one, on the panel it is the panel's; only a tap
+  // on empty space with nothing inspected plays or pauses. Decided after the frames in
+  // which ImGui sees the release: a slow frame can bring the touch's move, press and
+  // release all at once, and ImGui takes the press in one frame and the release in the next.
+  if (p.tap_frames > 0) {
+    if (p.app->empty_clicks() > p.empty_clicks_at_tap) {
+      invfree::live::LiveController& lc = p.app->controller();
+      lc.set_playing(!lc.playing());
+      p.tap_frames = 0;
+    } else {
+      --p.tap_frames;
+    }
   }
-  p.tap = false;
   download_screenshots(p);
   publish_state(p);
 }
@@ -248,7 +299,25 @@ Page g_page;
 
 // Called by the page's touch handling (shell.html) after a short tap.
 extern "C" EMSCRIPTEN_KEEPALIVE void invfree_tap() {
-  g_page.tap = true;
+  g_page.tap_frames = 3;
+  g_page.empty_clicks_at_tap = g_page.app ? g_page.app->empty_clicks() : 0;
+}
+
+// Triangle t's centroid in the page's pixels (the canvas's window coordinates), NaN when t
+// is not a triangle of the mesh: where a test taps to inspect it.
+static double triangle_window_coordinate(int t, int axis) {
+  if (!g_page.app) return NAN;
+  const invfree::Simulation& sim = g_page.app->controller().simulation();
+  if (t < 0 || t >= sim.mesh.triangle_count()) return NAN;
+  invfree::Vec2 c = invfree::Vec2::Zero();
+  for (int node : sim.mesh.triangles[static_cast<size_t>(t)]) c += sim.x.segment<2>(2 * node);
+  return g_page.app->to_window(c / 3.0)(axis);
+}
+extern "C" EMSCRIPTEN_KEEPALIVE double invfree_triangle_window_x(int t) {
+  return triangle_window_coordinate(t, 0);
+}
+extern "C" EMSCRIPTEN_KEEPALIVE double invfree_triangle_window_y(int t) {
+  return triangle_window_coordinate(t, 1);
 }
 
 int main() {

@@ -55,7 +55,8 @@ TEST(LiveCli, HelpListsEveryKey) {
     EXPECT_NE(r.out.find(b.description), std::string::npos) << b.description;
   }
   for (const auto& m : mouse_bindings()) EXPECT_NE(r.out.find(m.gesture), std::string::npos);
-  for (const char* opt : {"--frames", "--screenshot", "--bench", "--set", "--scene", "--record"})
+  for (const char* opt : {"--frames", "--screenshot", "--bench", "--set", "--scene", "--record",
+                          "--color-by", "--stress-glyphs", "--landscape", "--select-triangle"})
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
@@ -66,7 +67,8 @@ TEST(LiveCli, BadInputIsRejectedBeforeAnyWindow) {
       "live --scene nosuchscene", "live --set material.nu=0.5",
       "live --frames -1",         "live --size 10x10",
       "live --size big",          "live " + dir + "/live_bad_nu.toml",
-      "live --steps-per-frame 0"};
+      "live --steps-per-frame 0", "live --color-by nosuchfield",
+      "live --select-triangle 100000000", "live --select-triangle -1"};
   for (const std::string& args : cases) {
     const Result r = run_headless(args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;
