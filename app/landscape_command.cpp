@@ -143,7 +143,9 @@ int run_landscape(const LandscapeOptions& opt) {
                           " triangles of " + scene->name + " (" + model_label(scene->model) +
                           ") at step " + std::to_string(sim.step_count) + ", t = " + t + " s";
     if (!scene->has_triangle_elasticity())
-      spec.points_caption += " (a mass-spring scene: its springs have no \u03a8)";
+      spec.notes.push_back(
+          "A mass-spring scene: its springs have no \u03a8(F); the dots are its triangles' "
+          "singular values, drawn on the landscape of its [material] model for comparison.");
     if (!sim.triangle_lame.empty())
       spec.notes.push_back(
           "The scene's bodies have their own Lam\u00e9 parameters: the landscape is drawn with "

@@ -42,7 +42,7 @@ struct Layout {
   double bar_x = 0;   // the colour bar's left edge
   double width = 0;   // the drawing's
   double legend_top = 0, notes_top = 0, height = 0;
-  std::vector<std::string> title_lines;
+  std::vector<std::string> title_lines, caption_lines;
   std::vector<std::vector<std::string>> notes;
   double plot_left(size_t panel) const { return kLeft + panel * (plot_w + kGap); }
 };
@@ -142,7 +142,9 @@ Layout layout(const LandscapeChartSpec& spec) {
       ":  \u03bc = " + format_pascal(spec.lame.mu) + ",  \u03bb = " + format_pascal(spec.lame.lambda);
   l.title_lines = wrap_text(title, kTitleSize, l.width - 2 * 16.0);
   double y = 12.0 + l.title_lines.size() * kTitleSize * 1.3;
-  if (!spec.points_caption.empty()) y += kCaptionSize * 1.5;
+  if (!spec.points_caption.empty())
+    l.caption_lines = wrap_text(spec.points_caption, kCaptionSize, l.width - 2 * 16.0);
+  y += l.caption_lines.size() * kCaptionSize * 1.5;
   l.top = y + 50.0;  // the panels' two subtitle lines
   const double plots_bottom = l.top + l.plot_h;
   // Below the plots: tick labels, the axis label, the forbidden swatch beside the bar.
@@ -427,9 +429,9 @@ std::unique_ptr<Canvas> landscape_chart(const LandscapeChartSpec& spec, ChartFor
     y += kTitleSize * 1.3;
     c.text(line, 16.0, y - 4.0, kTitleSize, kInk);
   }
-  if (!spec.points_caption.empty()) {
+  for (const std::string& line : l.caption_lines) {
     y += kCaptionSize * 1.5;
-    c.text(spec.points_caption, 16.0, y - 4.0, kCaptionSize, kMuted);
+    c.text(line, 16.0, y - 4.0, kCaptionSize, kMuted);
   }
   const LandscapeScale scale = landscape_scale(spec.lame);
   const std::vector<double> levels = landscape_contour_levels(scale);

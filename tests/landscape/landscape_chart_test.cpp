@@ -127,6 +127,17 @@ TEST(LandscapeChart, SideBySideNamesEveryModelAndWhyOnlyOneIsABarrier) {
   EXPECT_EQ(chart_domain(s), common_landscape_domain());
 }
 
+TEST(LandscapeChart, ALongCaptionWrapsInsideTheDrawing) {
+  // One model is the narrowest chart; a scene's caption with a long name must wrap.
+  LandscapeChartSpec s = spec_of({Model::NeoHookean});
+  s.points = {{1.0, 1.0}};
+  s.points_caption = "Dots: the 32 triangles of course-1-mass-spring (neo-Hookean) at step 10, "
+                     "t = 0.04 s, and a good many more words than fit on one line of it";
+  auto canvas = landscape_chart(s, ChartFormat::Png);
+  expect_texts_inside(*canvas);
+  EXPECT_TRUE(has_text(*canvas, "Dots: the 32 triangles"));
+}
+
 TEST(LandscapeChart, VectorFormatsStaySmall) {
   // The heat map's equal neighbours merge into one rectangle: an SVG of the four models is
   // not a rectangle per cell.
