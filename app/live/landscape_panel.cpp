@@ -232,7 +232,9 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   }
 
   // The panel as one item, and what is under the mouse.
+  ImGui::PushID(&cache);  // one id per panel: two panels in one window do not collide
   ImGui::InvisibleButton("##landscape", size);
+  ImGui::PopID();
   if (ImGui::IsItemHovered()) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     if (m.x >= X0 && m.x <= X1 && m.y >= Y0 && m.y <= Y1) {
