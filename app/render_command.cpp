@@ -25,6 +25,7 @@
 #include <deque>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <regex>
 #include <string>
@@ -42,7 +43,9 @@
 #include "app/render/renderer.h"
 #include "app/render/view_choices.h"
 #include "app/scene_options.h"
+#include "enum_names.h"
 #include "simulation.h"
+#include "triangle_fields.h"
 
 namespace invfree {
 
@@ -63,6 +66,9 @@ struct RenderOptions {
   int writer_threads = 1;
   std::string color_range = "fixed";  // render::parse_color_range_mode
   std::string camera = "fixed";       // fixed | follow
+  std::string color_by = "det-f";     // kTriangleFieldNames (core/triangle_fields.h)
+  bool stress_glyphs = false;
+  int select_triangle = -1;  // outlined; -1: none
 };
 
 // The frame rates a movie may have (--fps, or the real-time rate it defaults to).
@@ -225,8 +231,13 @@ std::string make_movie(const std::string& ffmpeg, const std::string& dir, int fr
 // while this one is drawn and encoded.
 class SimulationThread {
  public:
-  SimulationThread(Simulation& sim, int frames, int steps_per_frame)
-      : sim_(sim), frames_(frames), steps_per_frame_(steps_per_frame), thread_([this] { run(); }) {}
+  SimulationThread(Simulation& sim, int frames, int steps_per_frame,
+                   const render::CaptureOptions& capture)
+      : sim_(sim),
+        frames_(frames),
+        steps_per_frame_(steps_per_frame),
+        capture_(capture),
+        thread_([this] { run(); }) {}
   ~SimulationThread() { stop(); }
 
   // The next frame's state; false when there is none (all produced, a step failed, or
@@ -265,7 +276,7 @@ class SimulationThread {
           }
         }
       }
-      render::FrameState state = render::capture_frame_state(sim_);
+      render::FrameState state = render::capture_frame_state(sim_, nullptr, capture_);
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] { return queue_.size() < kCapacity || stopping_; });
       if (stopping_) break;
@@ -283,6 +294,7 @@ class SimulationThread {
   static constexpr size_t kCapacity = 2;
   Simulation& sim_;
   const int frames_, steps_per_frame_;
+  const render::CaptureOptions capture_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<render::FrameState> queue_;
@@ -339,19 +351,25 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
                              render::FrameWriter& writer, const RenderOptions& opt,
                              const std::function<double()>& elapsed) {
   render::DrawOptions draw_options;
+  draw_options.stress_glyphs = opt.stress_glyphs;
+  draw_options.selected_triangle = opt.select_triangle;
+  render::CaptureOptions capture;
+  capture.color_by = *enum_from_name(kTriangleFieldNames, opt.color_by);
+  capture.stress_glyphs = opt.stress_glyphs;
   render::ColorRangeTracker color_range;
   color_range.mode = *render::parse_color_range_mode(opt.color_range);
   render::FollowCamera follow;
   const render::FrameLayout layout = renderer.layout();
   Progress progress(opt.frames);
   RenderedFrames out;
-  SimulationThread producer(sim, opt.frames, opt.steps_per_frame);
+  SimulationThread producer(sim, opt.frames, opt.steps_per_frame, capture);
   render::FrameState state;
   while (!interrupted() && producer.next(&state)) {
     const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
     out.det_lo = out.frames == 0 ? *lo : std::min(out.det_lo, *lo);
     out.det_hi = out.frames == 0 ? *hi : std::max(out.det_hi, *hi);
     color_range.apply(*lo, *hi, &draw_options);
+    color_range.apply_field(state, &draw_options);
     const render::Camera cam = opt.camera == "follow" ? follow.next(state, layout.plot)
                                                       : render::scene_camera(state.scene, layout);
     draw_options.camera = cam;
@@ -402,6 +420,12 @@ int run_render(const RenderOptions& opt) {
                     ": the real-time frame rate 1 / (h * steps-per-frame) = " + rate +
                     " frames/s is outside 0.1 to 1000; give --fps or change --steps-per-frame");
   }
+  Simulation sim = make_simulation(*scene);
+  if (opt.select_triangle >= sim.mesh.triangle_count())
+    return fail(exit_code::kBadInput,
+                "--select-triangle: " + std::to_string(opt.select_triangle) +
+                    " is out of range: the scene has " + std::to_string(sim.mesh.triangle_count()) +
+                    " triangles, 0.." + std::to_string(sim.mesh.triangle_count() - 1));
   OutputDirectory out_dir;
   if (auto e = out_dir.open(opt.out, opt.force)) return fail(e.exit_code, e.message);
 
@@ -414,7 +438,6 @@ int run_render(const RenderOptions& opt) {
   const auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  Simulation sim = make_simulation(*scene);
   render::FrameWriter writer(opt.writer_threads, opt.png_level);
   const RenderedFrames done = render_frames(sim, *renderer, writer, run, elapsed);
   const std::string write_error = writer.finish();
@@ -502,9 +525,29 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--color-range", opt.color_range,
                   "det F colour scale: fixed (0.25..4), run (automatic, from the frames so far: "
                   "only widens) or frame (automatic per frame); automatic ranges are symmetric in "
-                  "log det F around 1")
+                  "log det F around 1. psi and stress have no fixed scale: frame gives each "
+                  "frame its own, fixed and run the widest so far")
       ->capture_default_str()
       ->check(CLI::IsMember({"fixed", "run", "frame"}));
+  std::vector<std::string> fields;
+  for (const auto& f : kTriangleFieldNames) fields.emplace_back(f.name);
+  cmd->add_option("--color-by", opt.color_by,
+                  "what colours the triangles: det-f (area now / area at rest), psi (energy "
+                  "density, Pa, log scale), stress (the principal Cauchy stress of largest "
+                  "magnitude, signed: tension red, compression blue, Pa) or clamped (how many of "
+                  "dP/dF's four eigenvalues the PSD projection sets to 0: where Newton's Hessian "
+                  "departs from the true one); psi and stress are scaled from the frames (see "
+                  "--color-range, docs/rendering.md)")
+      ->capture_default_str()
+      ->check(CLI::IsMember(fields));
+  cmd->add_flag("--stress-glyphs", opt.stress_glyphs,
+                "draw a cross of principal stress strokes per triangle (length by magnitude, "
+                "tension red, compression blue); where triangles are smaller than 28 pixels (at "
+                "1280x720), one per 28-pixel cell");
+  cmd->add_option("--select-triangle", opt.select_triangle,
+                  "outline triangle T (as `invfree inspect --triangle T` reports it)")
+      ->type_name("T")
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   cmd->add_option("--camera", opt.camera,
                   "fixed (the scene's whole stage, the same every frame) or follow (frames the "
                   "bodies, moving smoothly)")

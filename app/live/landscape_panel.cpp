@@ -100,21 +100,29 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   const float line = ImGui::GetTextLineHeight();
   const ImU32 text = ImGui::GetColorU32(ImGuiCol_Text);
 
-  // Layout: the title line, the plot (square cells) with the s2 ticks on its left and the s1
-  // ticks under it, the colour bar and its labels on the right.
-  const std::string title = std::string("\u03a8(\u03c3\u2081, \u03c3\u2082): ") + model_label(model);
+  // Layout: the title line (the unit in it), the plot (square cells) with the s2 ticks on its
+  // left and the s1 ticks under it, and the colour bar either on the right (a wide panel) or
+  // under the plot (a narrow one, as the live window's): whichever gives the larger plot.
+  const std::string title = std::string("\u03a8(\u03c3\u2081, \u03c3\u2082) in Pa: ") + model_label(model);
+  const float bar_w = 9.0f, bar_label = ImGui::CalcTextSize("100k").x;
   const float left = p0.x + ImGui::CalcTextSize("\u22120.5").x + 8.0f;
   const float top = p0.y + line + 6.0f;
-  const float bar_w = 9.0f, bar_label = ImGui::CalcTextSize("100 kPa").x;
-  const float right = p0.x + size.x - bar_w - bar_label - 16.0f;
-  const float bottom = p0.y + size.y - line - 4.0f;
+  const float x_ticks = line + 4.0f;
   const double w_units = domain.s1_max - domain.s1_min, h_units = domain.s2_max - domain.s2_min;
+  const auto fit = [&](float right, float bottom) {
+    return std::max(1.0, std::min((right - left) / w_units, (bottom - top) / h_units));
+  };
+  const double ppu_side = fit(p0.x + size.x - bar_w - bar_label - 14.0f, p0.y + size.y - x_ticks);
+  const double ppu_below =
+      fit(p0.x + size.x - 6.0f, p0.y + size.y - x_ticks - (6.0f + bar_w + 2.0f + line));
+  const bool bar_below = ppu_below > ppu_side;
   Plot p;
   p.d = domain;
   p.x0 = left;
   p.y0 = top;
-  p.ppu = static_cast<float>(std::max(1.0, std::min((right - left) / w_units, (bottom - top) / h_units)));
+  p.ppu = static_cast<float>(bar_below ? ppu_below : ppu_side);
   const float X0 = p.x0, Y0 = p.y0, X1 = p.x1(), Y1 = p.y1();
+  const float used_h = (Y1 - p0.y) + x_ticks + (bar_below ? 6.0f + bar_w + 2.0f + line : 0.0f);
 
   dl->AddText(p0, text, title.c_str());
 
@@ -189,16 +197,19 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   dl->PopClipRect();
   dl->AddRect(ImVec2(X0, Y0), ImVec2(X1, Y1), text, 0.0f, 0, 1.0f);
 
-  // Ticks: every 0.5 when there is room, else every 1.
-  const double step = p.ppu * 0.5f >= line * 1.4f ? 0.5 : 1.0;
+  // Ticks every 0.5 when their labels (and the axis name between the last two) have room,
+  // else every 1.
+  const float name1_w = ImGui::CalcTextSize("\u03c3\u2081").x;
+  const double step1 = p.ppu * 0.5f >= ImGui::CalcTextSize("1.5").x + name1_w + 12.0f ? 0.5 : 1.0;
+  const double step2 = p.ppu * 0.5f >= 2.0f * line ? 0.5 : 1.0;
   char buf[32];
-  for (double v = std::ceil(domain.s1_min / step) * step; v <= domain.s1_max + 1e-9; v += step) {
+  for (double v = std::ceil(domain.s1_min / step1) * step1; v <= domain.s1_max + 1e-9; v += step1) {
     std::snprintf(buf, sizeof buf, "%g", v);
     const float w = ImGui::CalcTextSize(buf).x;
     dl->AddLine(ImVec2(p.x(v), Y1), ImVec2(p.x(v), Y1 + 3.0f), text);
     dl->AddText(ImVec2(p.x(v) - w / 2, Y1 + 3.0f), text, buf);
   }
-  for (double v = std::ceil(domain.s2_min / step) * step; v <= domain.s2_max + 1e-9; v += step) {
+  for (double v = std::ceil(domain.s2_min / step2) * step2; v <= domain.s2_max + 1e-9; v += step2) {
     std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-9 ? 0.0 : v);
     const std::string label = buf[0] == '-' ? "\u2212" + std::string(buf + 1) : std::string(buf);
     const float w = ImGui::CalcTextSize(label.c_str()).x;
@@ -206,34 +217,48 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
     dl->AddText(ImVec2(X0 - 5.0f - w, p.y(v) - line / 2), text, label.c_str());
   }
   // The axis names sit between the last two ticks of their axis.
-  const double name_at1 = domain.s1_max - step / 2, name_at2 = domain.s2_max - step / 2;
-  dl->AddText(ImVec2(p.x(name_at1) - ImGui::CalcTextSize("\u03c3\u2081").x / 2, Y1 + 3.0f), text,
-              "\u03c3\u2081");
+  const double name_at1 = domain.s1_max - step1 / 2, name_at2 = domain.s2_max - step2 / 2;
+  dl->AddText(ImVec2(p.x(name_at1) - name1_w / 2, Y1 + 3.0f), text, "\u03c3\u2081");
   dl->AddText(ImVec2(X0 - 5.0f - ImGui::CalcTextSize("\u03c3\u2082").x, p.y(name_at2) - line / 2),
               text, "\u03c3\u2082");
 
-  // The colour bar: the map is piecewise linear in t, 8 pieces, each one gradient rectangle.
-  const float bx0 = X1 + 8.0f, bx1 = bx0 + bar_w;
+  // The colour bar: the map is piecewise linear in t, 8 pieces, each one gradient rectangle;
+  // a tick at every contour level, the decades labelled (1k, 10k, ...: Pa, as the title says).
+  const float bx0 = bar_below ? X0 : X1 + 8.0f, bx1 = bar_below ? X1 : bx0 + bar_w;
+  const float by0 = bar_below ? Y1 + x_ticks + 6.0f : Y0, by1 = bar_below ? by0 + bar_w : Y1;
+  // Position t on the bar: along x from the left (below), along y from the bottom (side).
+  const auto at = [&](double t) {
+    return bar_below ? bx0 + static_cast<float>(t) * (bx1 - bx0) : by1 - static_cast<float>(t) * (by1 - by0);
+  };
   for (int k = 0; k < 8; ++k) {
-    const double t0 = k / 8.0, t1 = (k + 1) / 8.0;
-    const float ya = Y1 - static_cast<float>(t1) * (Y1 - Y0), yb = Y1 - static_cast<float>(t0) * (Y1 - Y0);
-    const ImU32 hi = to_u32(landscape_scale_color(t1)), lo = to_u32(landscape_scale_color(t0));
-    dl->AddRectFilledMultiColor(ImVec2(bx0, ya), ImVec2(bx1, yb + 0.5f), hi, hi, lo, lo);
+    const ImU32 c0 = to_u32(landscape_scale_color(k / 8.0)), c1 = to_u32(landscape_scale_color((k + 1) / 8.0));
+    if (bar_below)
+      dl->AddRectFilledMultiColor(ImVec2(at(k / 8.0), by0), ImVec2(at((k + 1) / 8.0) + 0.5f, by1), c0, c1, c1, c0);
+    else
+      dl->AddRectFilledMultiColor(ImVec2(bx0, at((k + 1) / 8.0)), ImVec2(bx1, at(k / 8.0) + 0.5f), c1, c1, c0, c0);
   }
-  dl->AddRect(ImVec2(bx0, Y0), ImVec2(bx1, Y1), text);
+  dl->AddRect(ImVec2(bx0, by0), ImVec2(bx1, by1), text);
   for (double level : lc.levels) {
-    const float y = Y1 - static_cast<float>(landscape_scale_position(lc.scale, level)) * (Y1 - Y0);
-    dl->AddLine(ImVec2(bx0, y), ImVec2(bx1 + 3.0f, y), kInk);
-    const double mantissa = level / std::pow(10.0, std::floor(std::log10(level) + 1e-9));
-    if (std::abs(mantissa - 1.0) < 1e-6) {  // the decades: every other level, so they fit
-      const std::string l = format_pascal(level);
-      dl->AddText(ImVec2(bx1 + 5.0f, y - line / 2), text, l.c_str());
-    }
+    const float q = at(landscape_scale_position(lc.scale, level));
+    if (bar_below)
+      dl->AddLine(ImVec2(q, by0), ImVec2(q, by1 + 2.0f), kInk);
+    else
+      dl->AddLine(ImVec2(bx0, q), ImVec2(bx1 + 3.0f, q), kInk);
+    const double decade = std::pow(10.0, std::floor(std::log10(level) + 1e-9));
+    if (std::abs(level / decade - 1.0) > 1e-6) continue;  // 3 x 10^k: a tick only
+    const char* suffix = decade >= 1e9 ? "G" : decade >= 1e6 ? "M" : decade >= 1e3 ? "k" : "";
+    const double unit = decade >= 1e9 ? 1e9 : decade >= 1e6 ? 1e6 : decade >= 1e3 ? 1e3 : 1.0;
+    std::snprintf(buf, sizeof buf, "%g%s", level / unit, suffix);
+    const float w = ImGui::CalcTextSize(buf).x;
+    if (bar_below)
+      dl->AddText(ImVec2(std::clamp(q - w / 2, bx0 - 4.0f, bx1 + 4.0f - w), by1 + 2.0f), text, buf);
+    else
+      dl->AddText(ImVec2(bx1 + 5.0f, q - line / 2), text, buf);
   }
 
   // The panel as one item, and what is under the mouse.
   ImGui::PushID(&cache);  // one id per panel: two panels in one window do not collide
-  ImGui::InvisibleButton("##landscape", size);
+  ImGui::InvisibleButton("##landscape", ImVec2(size.x, std::min(size.y, used_h)));
   ImGui::PopID();
   if (ImGui::IsItemHovered()) {
     const ImVec2 m = ImGui::GetIO().MousePos;

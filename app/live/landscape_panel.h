@@ -16,8 +16,9 @@
 //                          landscape_cache);
 //   }
 //
-// It draws at the cursor, takes `size` (an invisible button: a click on it does not reach
-// the window behind), and shows a tooltip with (s1, s2) and Psi under the mouse. The grid and
+// It draws at the cursor within `size`, the colour bar beside the plot or under it (whichever
+// leaves the larger plot), takes the height it used (an invisible button: a click on it does
+// not reach the window behind), and shows a tooltip with (s1, s2) and Psi under the mouse. The grid and
 // the contours are rebuilt only when the model or the Lame parameters change (the cache);
 // per frame it computes each triangle's (s1, s2) and writes the vertices.
 // Cost (tests/bench/landscape_bench.cpp, docs/landscape.md): well under the 2 ms.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/render/field_legend.h"
 #include "app/render/frame_text.h"
 
 namespace invfree::render {
@@ -20,6 +21,14 @@ constexpr Rgba kPlaneEdge{0.22f, 0.22f, 0.22f, 1.0f};
 constexpr Rgba kMeshEdge{0.08f, 0.08f, 0.08f, 0.38f};
 constexpr Rgba kOutline{0.08f, 0.08f, 0.08f, 1.0f};
 constexpr Rgba kInvertedInk{0.0f, 0.50f, 0.10f, 1.0f};  // the inverted green, dark enough for text
+constexpr Rgba kSelectedInk{1.0f, 0.86f, 0.0f, 1.0f};   // the selected triangle's outline
+constexpr Rgba kTensionInk{0.80f, 0.04f, 0.10f, 1.0f};  // stress glyphs
+constexpr Rgba kCompressionInk{0.04f, 0.26f, 0.78f, 1.0f};
+constexpr Rgba kGlyphHalo{1.0f, 1.0f, 1.0f, 0.85f};
+
+// The longest stress glyph stroke, as a fraction of the glyph spacing (the mean triangle's
+// size, or the thinning cell).
+constexpr double kGlyphLength = 0.85;
 
 void add_triangle(Shapes& s, Vec2 a, Vec2 b, Vec2 c, Rgba ca, Rgba cb, Rgba cc) {
   s.push_back({float(a.x()), float(a.y()), ca});
@@ -145,16 +154,18 @@ void add_plane_fills(FrameVertices& res, const FrameLayout& L, const Camera& cam
   }
 }
 
-// Every triangle filled with its det F colour; inverted triangles last: they overlap their
-// neighbours (they are folded over), and drawn first they would be hidden under them.
+// Every triangle filled with its det F colour, or with its field's colour on `field`
+// (when set); inverted triangles last: they overlap their neighbours (they are folded
+// over), and drawn first they would be hidden under them.
 void add_mesh_fills(Shapes& world, const std::vector<Vec2>& p, const FrameState& state,
-                    double range) {
+                    double range, const FieldScale* field) {
   for (const bool inverted_pass : {false, true}) {
     for (size_t t = 0; t < state.triangles.size(); ++t) {
       const double d = t < state.det_f.size() ? state.det_f[t] : 1.0;
       if (!(d > 0.0) != inverted_pass) continue;
       const auto& tri = state.triangles[t];
-      add_triangle(world, p[tri[0]], p[tri[1]], p[tri[2]], rgba(det_f_color(d, range)));
+      const Rgb c = field ? field_color(*field, state.field[t]) : det_f_color(d, range);
+      add_triangle(world, p[tri[0]], p[tri[1]], p[tri[2]], rgba(c));
     }
   }
 }
@@ -220,11 +231,220 @@ void add_inverted_rings(Shapes& world, const std::vector<Vec2>& p, const FrameSt
   }
 }
 
+// The principal stress glyphs: per triangle a cross of two strokes centred at its
+// centroid along its principal directions, each as long as its stress's magnitude relative
+// to the frame's largest (kGlyphLength of the spacing for that one), tension red and
+// compression blue, over a white halo so that they read on any fill. Readable only where
+// they do not overlap: when the mean triangle is smaller than a glyph cell
+// (kGlyphCellPixels, scaled), one glyph per cell of a pixel grid over the plot, for the
+// triangle whose centroid lies nearest the cell's middle.
+void add_stress_glyphs(FrameVertices& res, const std::vector<Vec2>& p, const FrameState& state,
+                       const FrameLayout& L) {
+  const size_t n = state.triangles.size();
+  if (n == 0 || state.principal_stress.size() != n || state.principal_direction.size() != n) return;
+  Shapes& world = res.shapes;
+  double max_abs = 0.0, area = 0.0;
+  std::vector<Vec2>& centroids = res.glyph_centroids;
+  centroids.resize(n);
+  for (size_t t = 0; t < n; ++t) {
+    const auto& tri = state.triangles[t];
+    const Vec2 a = p[tri[0]], b = p[tri[1]], c = p[tri[2]];
+    centroids[t] = (a + b + c) / 3.0;
+    const Vec2 u = b - a, v = c - a;
+    area += 0.5 * std::abs(u.x() * v.y() - u.y() * v.x());
+    const Vec2& s = state.principal_stress[t];
+    if (std::isfinite(s.x()) && std::isfinite(s.y()))
+      max_abs = std::max({max_abs, std::abs(s.x()), std::abs(s.y())});
+  }
+  if (!(max_abs > 0.0)) return;
+  const double cell = glyph_cell_pixels(L.scale);
+  const double size = std::sqrt(area / static_cast<double>(n));  // the mean triangle's
+  const bool thinned = size < cell;
+  const double max_length = kGlyphLength * (thinned ? cell : size);
+  // Thinned: the triangle nearest each cell's middle.
+  std::vector<int>& chosen = res.glyph_chosen;
+  chosen.clear();
+  if (thinned) {
+    const int cols = std::max(1, static_cast<int>(std::ceil(L.plot.w / cell)));
+    const int rows = std::max(1, static_cast<int>(std::ceil(L.plot.h / cell)));
+    std::vector<int>& best = res.glyph_cell_best;
+    std::vector<double>& best_d = res.glyph_cell_distance;
+    best.assign(static_cast<size_t>(cols) * rows, -1);
+    best_d.assign(best.size(), 0.0);
+    for (size_t t = 0; t < n; ++t) {
+      const double fx = (centroids[t].x() - L.plot.x) / cell;
+      const double fy = (centroids[t].y() - L.plot.y) / cell;
+      if (!(fx >= 0.0 && fy >= 0.0 && fx < cols && fy < rows)) continue;
+      const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
+      const double d = std::hypot(fx - cx - 0.5, fy - cy - 0.5);
+      const size_t k = static_cast<size_t>(cy) * cols + cx;
+      if (best[k] < 0 || d < best_d[k]) {
+        best[k] = static_cast<int>(t);
+        best_d[k] = d;
+      }
+    }
+    for (const int t : best)
+      if (t >= 0) chosen.push_back(t);
+  } else {
+    for (size_t t = 0; t < n; ++t) chosen.push_back(static_cast<int>(t));
+  }
+  const double width = std::max(1.6, 2.4 * L.scale), halo = width + std::max(2.0, 2.4 * L.scale);
+  for (const bool halo_pass : {true, false}) {
+    for (const int t : chosen) {
+      const Vec2 s = state.principal_stress[static_cast<size_t>(t)];
+      const Vec2 dir = state.principal_direction[static_cast<size_t>(t)];
+      const Vec2 d1(dir.x(), -dir.y());  // world y up, pixels y down
+      const Vec2 d2(-d1.y(), d1.x());
+      for (int k = 0; k < 2; ++k) {
+        const double value = s(k);
+        if (!std::isfinite(value)) continue;
+        const double half = 0.5 * max_length * std::abs(value) / max_abs;
+        if (half < 0.5) continue;  // under a pixel: nothing to read
+        const Vec2 d = k == 0 ? d1 : d2, c = centroids[static_cast<size_t>(t)];
+        if (halo_pass)
+          add_segment(world, c - half * d, c + half * d, halo, kGlyphHalo);
+        else
+          add_segment(world, c - half * d, c + half * d, width,
+                      value > 0.0 ? kTensionInk : kCompressionInk);
+      }
+    }
+  }
+}
+
+// The selected triangle's outline: a wide dark stroke under a bright yellow one, so that it
+// shows on every colour scale (no scale has this yellow next to black).
+void add_selected_outline(Shapes& world, const std::vector<Vec2>& p, const FrameState& state,
+                          int selected, double s) {
+  if (selected < 0 || static_cast<size_t>(selected) >= state.triangles.size()) return;
+  const auto& tri = state.triangles[static_cast<size_t>(selected)];
+  for (const auto& [width, color] : {std::pair{std::max(5.0, 6.5 * s), kOutline},
+                                     std::pair{std::max(2.5, 3.0 * s), kSelectedInk}})
+    for (int k = 0; k < 3; ++k) add_segment(world, p[tri[k]], p[tri[(k + 1) % 3]], width, color);
+}
+
+// The colour bar of a field other than det F, laid out as det F's below the panel's text:
+// its title and what it is (field_legend.h, wrapped to the panel), the bar of its scale
+// (app/field_colormap.h) with round ticks, markers at the frame's min and max (Psi,
+// stress) or each category's triangle count (clamped), and below it a ring, for inverted
+// triangles are ringed in every colouring.
+void draw_field_bar(FrameVertices& res, const FrameLayout& L, const FieldScale& scale,
+                    const FieldStats& stats, double x0, double y, double pad) {
+  const double s = L.scale;
+  Shapes& panel = res.shapes;
+  const double body = res.font_sizes[kBody], small = res.font_sizes[kSmall];
+  const double bar_w = std::round(24.0 * s), marker = std::round(9.0 * s);
+  const double bar_x0 = x0 + marker + std::round(4.0 * s), bar_x1 = bar_x0 + bar_w;
+  const double swatch_h = std::round(20.0 * s);
+  const double swatch_y1 = L.height - pad, swatch_y0 = swatch_y1 - swatch_h;
+  const double bar_y1 = std::round(swatch_y0 - 1.6 * small);
+  const double bar_title_y = y + 2.0 * body;
+  const FieldLegendWords words = field_legend_words(scale);
+  const FieldUnit unit = field_unit(scale);
+  res.add_text(words.title, kBody, x0, bar_title_y, kInk);
+  const double text_width = L.panel.x + L.panel.w - 0.5 * pad - x0;
+  double line_y = bar_title_y;
+  for (const std::string& line : wrap_words(words.subtitle, text_width, [&](const std::string& t) {
+         return res.atlas->text_width(t, kSmall);
+       })) {
+    line_y += 1.15 * small;
+    res.add_text(line, kSmall, x0, line_y, kMutedInk);
+  }
+  const double bar_y0 = std::round(line_y + 0.9 * small);
+  const auto bar_y = [&](double t) { return bar_y1 - t * (bar_y1 - bar_y0); };  // t: 0..1
+  const double thin = std::max(1.0, std::round(s));
+  switch (scale.field) {
+    case TriangleField::Psi:  // the scale's stops: piecewise linear, exact
+      for (int k = 0; k + 1 < kSequentialStops; ++k) {
+        const double t0 = double(k) / (kSequentialStops - 1),
+                     t1 = double(k + 1) / (kSequentialStops - 1);
+        add_rect(panel, bar_x0, bar_y(t1), bar_x1, bar_y(t0), rgba(sequential_color(t1)),
+                 rgba(sequential_color(t0)));
+      }
+      break;
+    case TriangleField::Stress:
+      for (int k = 0; k < 6; ++k) {
+        const double t0 = k / 6.0, t1 = (k + 1) / 6.0;
+        add_rect(panel, bar_x0, bar_y(t1), bar_x1, bar_y(t0), rgba(diverging_color(2 * t1 - 1)),
+                 rgba(diverging_color(2 * t0 - 1)));
+      }
+      break;
+    case TriangleField::Clamped:
+      for (int k = 0; k < kClampedCategories; ++k) {
+        const double t0 = double(k) / kClampedCategories, t1 = double(k + 1) / kClampedCategories;
+        add_rect(panel, bar_x0, bar_y(t1), bar_x1, bar_y(t0), rgba(clamped_color(k)));
+        if (k > 0)
+          add_rect(panel, bar_x0, bar_y(t0) - 0.5 * thin, bar_x1, bar_y(t0) + 0.5 * thin,
+                   kMutedInk);
+      }
+      break;
+    case TriangleField::DetF:
+      break;
+  }
+  add_rect_outline(panel, bar_x0, bar_y0, bar_x1, bar_y1, thin, kMutedInk);
+  const double tick_len = std::round(6.0 * s), label_x = bar_x1 + tick_len + std::round(6.0 * s);
+  double label_right = label_x;
+  for (const FieldTick& t : field_bar_ticks(scale)) {
+    const double ty = std::round(bar_y(t.position));
+    add_rect(panel, bar_x1, ty - 0.5 * thin, bar_x1 + tick_len, ty + 0.5 * thin, kMutedInk);
+    res.add_text(t.label, kSmall, label_x, ty + 0.36 * small, kInk);
+    label_right = std::max(label_right, label_x + res.atlas->text_width(t.label, kSmall));
+  }
+  const double note_x = label_right + std::round(14.0 * s);
+  // The ring legend: the inverted triangles' mark, whatever the colouring.
+  const Vec2 ring_centre(0.5 * (bar_x0 + bar_x1), 0.5 * (swatch_y0 + swatch_y1));
+  const double ring_r = 0.42 * swatch_h;
+  add_ring(panel, ring_centre, ring_r, std::max(2.0, 3.2 * s), kOutline);
+  add_ring(panel, ring_centre, ring_r, std::max(1.2, 1.8 * s), rgba(kInvertedColor));
+  res.add_text("det F ≤ 0 (ringed)", kSmall, label_x, ring_centre.y() + 0.36 * small, kInk);
+  if (scale.field == TriangleField::Clamped) {  // how many triangles in each category
+    for (int k = 0; k < kClampedCategories; ++k) {
+      const int n = stats.category_counts[k];
+      const double ty = bar_y((k + 0.5) / kClampedCategories);
+      // 0 clamped: Newton's Hessian is the true one there.
+      std::string note = n == 0   ? "none"
+                         : k == 0 ? std::to_string(n) + ", Hessian exact"
+                                  : std::to_string(n) + (n == 1 ? " triangle" : " triangles");
+      res.add_text(note, kSmall, note_x, ty + 0.36 * small, n == 0 ? kMutedInk : kInk);
+    }
+    return;
+  }
+  if (stats.count == 0) return;
+  // Markers at the frame's min and max, each labelled right of the ticks, the max label at
+  // or above the min label, a line apart at least (as det F's).
+  const double line = 1.15 * small;
+  double max_label_y = bar_y(field_bar_position(scale, stats.max));
+  double min_label_y = bar_y(field_bar_position(scale, stats.min));
+  if (min_label_y - max_label_y < line) {
+    const double mid = 0.5 * (min_label_y + max_label_y);
+    max_label_y = mid - 0.5 * line;
+    min_label_y = mid + 0.5 * line;
+  }
+  for (const double v : {stats.min, stats.max}) {
+    const double mx = bar_x0 - std::round(2.0 * s) - res.atlas->text_width("▶", kSmall);
+    res.add_text("▶", kSmall, mx,
+                 bar_y(field_bar_position(scale, v)) - res.atlas->ink_middle(kSmall, U'▶'), kInk);
+  }
+  // Psi's with their own prefix (its ticks have theirs), stress's in the bar's unit.
+  const auto value_text = [&](double v) {
+    return scale.field == TriangleField::Psi ? format_si(v, "Pa") : format_in_unit(v, unit);
+  };
+  res.add_text("max " + value_text(stats.max), kSmall, note_x, max_label_y + 0.36 * small, kInk);
+  res.add_text("min " + value_text(stats.min), kSmall, note_x, min_label_y + 0.36 * small, kInk);
+  const auto clear_of_labels = [&](double y) {
+    return std::abs(y - max_label_y) >= line && std::abs(y - min_label_y) >= line;
+  };
+  if (!words.top_note.empty() && clear_of_labels(bar_y(1.0)))
+    res.add_text(words.top_note, kSmall, note_x, bar_y(1.0) + 0.36 * small, kMutedInk);
+  if (!words.bottom_note.empty() && clear_of_labels(bar_y(0.0)))
+    res.add_text(words.bottom_note, kSmall, note_x, bar_y(0.0) + 0.36 * small, kMutedInk);
+}
+
 // The side panel: scene, model, Lame parameters, time, step, det F extremes, and the
 // colour bar with its ticks, the min/max markers and the det F <= 0 swatch.
 // Returns the end of its opaque backdrop in res.shapes (what can be drawn without blending).
 size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& state, double det_lo,
-                  double det_hi, int inverted, const DrawOptions& o) {
+                  double det_hi, int inverted, const DrawOptions& o, const FieldScale* field,
+                  const FieldStats& field_stats) {
   const SceneDef& scene = state.scene;
   const double s = L.scale;
   const double range = o.color_range;
@@ -270,6 +490,10 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
         kBody, x0, y, kInvertedInk);
   }
 
+  if (field) {  // another field's bar in place of det F's
+    draw_field_bar(res, L, *field, field_stats, x0, y, pad);
+    return backdrop_end;
+  }
   // Colour bar: vertical, stretch up, with the det F <= 0 swatch below it.
   const double bar_w = std::round(24.0 * s), marker = std::round(9.0 * s);
   const double bar_x0 = x0 + marker + std::round(4.0 * s), bar_x1 = bar_x0 + bar_w;
@@ -362,17 +586,30 @@ ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, cons
   const int nodes = static_cast<int>(state.x.size() / 2);
   std::vector<Vec2> p(static_cast<size_t>(nodes));
   for (int i = 0; i < nodes; ++i) p[i] = cam.to_pixel(Vec2(state.x[2 * i], state.x[2 * i + 1]));
+  // Coloured by another field than det F (when the state has its values): its scale.
+  FieldScale scale;
+  FieldStats stats;
+  const bool by_field =
+      state.color_by != TriangleField::DetF && state.field.size() == state.triangles.size();
+  if (by_field) {
+    stats = field_stats(state.color_by, state.field);
+    scale = options.field_scale && options.field_scale->field == state.color_by
+                ? *options.field_scale
+                : auto_field_scale(state.color_by, stats);
+  }
   add_plane_fills(v, L, cam, state);
-  add_mesh_fills(v.shapes, p, state, options.color_range);
+  add_mesh_fills(v.shapes, p, state, options.color_range, by_field ? &scale : nullptr);
   ShapeRanges ranges;
   ranges.world_fills = v.shapes.size();
   add_strokes(v, L, cam, state, p, options.edges);
   if (options.ring_inverted) add_inverted_rings(v.shapes, p, state, L.scale);
+  if (options.stress_glyphs) add_stress_glyphs(v, p, state, L);
+  add_selected_outline(v.shapes, p, state, options.selected_triangle, L.scale);
   ranges.world_end = v.shapes.size();
   const DetFSummary det = summarize_det_f(state);
-  ranges.panel_backdrop = options.panel
-                              ? draw_panel(v, L, state, det.lo, det.hi, det.inverted, options)
-                              : ranges.world_end;
+  ranges.panel_backdrop = options.panel ? draw_panel(v, L, state, det.lo, det.hi, det.inverted,
+                                                     options, by_field ? &scale : nullptr, stats)
+                                        : ranges.world_end;
   return ranges;
 }
 

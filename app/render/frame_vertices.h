@@ -1,11 +1,14 @@
 // The vertex lists of one frame, built on the CPU from a FrameState: the world (the
-// planes' hatched bands and fills, the triangles coloured by det F, the mesh edges, the
-// body's outline, the planes' surfaces) and the side panel (words, numbers and the colour
+// planes' hatched bands and fills, the triangles coloured by det F or another field, the
+// mesh edges, the body's outline, the planes' surfaces, the inverted triangles' rings, the
+// stress glyphs, the selected triangle's outline) and the side panel (words, numbers and the colour
 // bar), in the frame's pixels (x right, y down). renderer.cpp uploads and draws them; the
 // layout of a frame is camera.h's, its words frame_text.h's.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -62,12 +65,25 @@ struct FrameVertices {
   std::vector<GlyphQuad> glyphs;
   std::vector<std::pair<int, int>> interior_edges, boundary_edges;
   std::vector<std::array<int, 3>> edges_of;
+  // The stress glyphs' scratch: centroids, the triangles drawn, and per thinning cell the
+  // triangle nearest its middle and that distance.
+  std::vector<Vec2> glyph_centroids;
+  std::vector<int> glyph_chosen, glyph_cell_best;
+  std::vector<double> glyph_cell_distance;
 
   // Appends the quads of `s` at size index `size` with its baseline at (x, baseline);
   // `align` 0: left, 0.5: centred, 1: right.
   void add_text(std::string_view s, int size, double x, double baseline, Rgba color,
                 double align = 0.0);
 };
+
+// Stress glyphs need this many pixels (at 1280x720; scaled with the frame, at least 16) per
+// glyph to be read as a cross: a mesh whose mean triangle is smaller gets one glyph per
+// cell of that size instead of one per triangle.
+constexpr double kGlyphCellPixels = 28.0;
+inline double glyph_cell_pixels(double layout_scale) {
+  return std::max(16.0, std::round(kGlyphCellPixels * layout_scale));
+}
 
 // Replaces v's lists with those of `state` seen through `cam` in layout L (the mesh's
 // interior edges, the panel, the colour range and the rings of inverted triangles as

@@ -9,6 +9,7 @@
 #include "app/render/gl_api.h"
 #include "app/render/shader_sources.h"
 #include "app/render/text_atlas.h"
+#include "material/models.h"
 
 namespace invfree::render {
 
@@ -277,6 +278,37 @@ void Renderer::set_text_scale(double scale) {
   gl_->gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous_texture));
 }
 
+namespace {
+
+// Each triangle's principal Cauchy stresses (larger first) and the first one's unit
+// direction, for the stress glyphs: P from the model, sigma = P F^T / J, its closed-form
+// symmetric eigen-decomposition (as material/stress_analysis.cpp's, without the SVD and
+// the Hessian analysis a glyph does not need). Zero where a barrier model's energy is
+// infinite (J <= 0).
+void principal_stresses(const Simulation& sim, std::vector<Vec2>* values,
+                        std::vector<Vec2>* directions) {
+  const int n = sim.mesh.triangle_count();
+  values->assign(static_cast<size_t>(n), Vec2::Zero());
+  directions->assign(static_cast<size_t>(n), Vec2(1.0, 0.0));
+  const Model model = sim.scene.model;
+  const bool inversion_allowed = model_allows_inversion(model);
+  for (int t = 0; t < n; ++t) {
+    const Mat2 F = triangle_deformation_gradient(sim, t);
+    const double J = determinant(F);
+    if (J == 0.0 || (!inversion_allowed && !(J > 0.0))) continue;
+    const Mat2 P = first_piola(model, F, triangle_material(sim, t));
+    Mat2 c = P * F.transpose() / J;
+    c = 0.5 * (c + c.transpose());
+    const double mean = 0.5 * (c(0, 0) + c(1, 1)), half_diff = 0.5 * (c(0, 0) - c(1, 1));
+    const double radius = std::hypot(half_diff, c(0, 1));
+    const double theta = 0.5 * std::atan2(c(0, 1), half_diff);
+    (*values)[static_cast<size_t>(t)] = Vec2(mean + radius, mean - radius);
+    (*directions)[static_cast<size_t>(t)] = Vec2(std::cos(theta), std::sin(theta));
+  }
+}
+
+}  // namespace
+
 FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f,
                                const CaptureOptions& capture) {
   FrameState f;
@@ -289,6 +321,8 @@ FrameState capture_frame_state(const Simulation& sim, const std::vector<double>*
     f.field = f.det_f;
   else
     triangle_field(sim, capture.color_by, &f.field);
+  if (capture.stress_glyphs && sim.scene.has_triangle_elasticity())
+    principal_stresses(sim, &f.principal_stress, &f.principal_direction);
   f.ceiling_y = sim.ceiling_y;
   f.time = sim.time;
   f.step = sim.step_count;

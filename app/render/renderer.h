@@ -3,13 +3,18 @@
 // for pixel on the same GL implementation.
 //
 // What a frame shows (layout in camera.h, words in frame_text.h):
-//  - every triangle filled with det_f_color(det F) (app/colormap.h): blue compression,
-//    white at det F = 1, red stretch, green det F <= 0;
+//  - every triangle filled with the colour of FrameState::field: by default
+//    det_f_color(det F) (app/colormap.h): blue compression, white at det F = 1, red
+//    stretch, green det F <= 0; or Psi, the signed principal stress or the clamped count
+//    on the scales of app/field_colormap.h;
 //  - the triangle edges (DrawOptions::edges) and the body's outline;
 //  - the ground and the ceiling as hatched half-planes;
 //  - a side panel: scene name, model, mu, lambda, t, step, min/max det F (and the count of
-//    inverted triangles when there are any), and the colour bar with numeric ticks,
-//    markers at the current min and max, and the det F <= 0 swatch.
+//    inverted triangles when there are any), and the colour bar of the field the
+//    triangles are coloured by, with numeric ticks, markers at the current min and max, and the det F <= 0 swatch
+//    (a ring for the other fields: inverted triangles are ringed in every colouring);
+//  - optionally a cross of principal stress strokes per triangle (or per cell of a fine
+//    mesh) and a thick outline around one selected triangle.
 // Nothing depends on the wall clock, so the same state gives the same picture.
 //
 // Antialiasing is analytic, so it is the same on every OpenGL implementation and costs
@@ -41,6 +46,7 @@
 #include <vector>
 
 #include "app/colormap.h"
+#include "app/field_colormap.h"
 #include "app/render/camera.h"
 #include "app/render/gl_proc.h"
 #include "simulation.h"
@@ -84,11 +90,18 @@ struct DrawOptions {
   // the bar that it was chosen from the data (auto_det_f_range), not the fixed kDetFRange.
   double color_range = kDetFRange;
   bool color_range_auto = false;
+  // The scale of the other fields (FrameState::color_by Psi, stress, clamped): unset, it is
+  // chosen from the frame's own values (auto_field_scale in field_legend.h); a movie
+  // passes the widest so far (ColorRangeTracker::apply_field) so its colours keep meaning.
+  std::optional<FieldScale> field_scale;
   bool ring_inverted = true;  // a ring around every inverted triangle (det F <= 0)
-  // The inspected triangle (the live inspector's, `inspect`'s): outlined; -1: none.
+  // The inspected triangle (the live inspector's, `inspect`'s): outlined, dark under
+  // bright yellow, above everything else in the world; -1 (or out of range): none.
   int selected_triangle = -1;
   // A pair of short strokes per triangle along its principal stresses, length by
-  // magnitude (needs a state captured with CaptureOptions::stress_glyphs).
+  // magnitude relative to the frame's largest, tension red, compression blue (needs a
+  // state captured with CaptureOptions::stress_glyphs). Where triangles are smaller than
+  // kGlyphCellPixels (frame_vertices.h) one glyph per cell of that size is drawn.
   bool stress_glyphs = false;
   // Replaces the scene's fixed camera (a live view's pan and zoom); pixels of this frame.
   std::optional<Camera> camera;

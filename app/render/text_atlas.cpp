@@ -13,7 +13,7 @@ namespace {
 // en dash, middle dot, times, minus, superscripts, arrows, the colour bar's marker.
 constexpr char32_t kExtraCodepoints[] = {U'μ', U'λ', U'Δ', U'ν', U'ρ', U'≤', U'≥',
                                          U'∈', U'–', U'·', U'×', U'−', U'²', U'³',
-                                         U'⁻', U'¹', U'↑', U'↓', U'°', U'…', U'▶'};
+                                         U'⁻', U'¹', U'↑', U'↓', U'°', U'…', U'▶', U'Ψ'};
 
 constexpr int kAtlasWidth = 1024;
 

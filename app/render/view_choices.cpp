@@ -44,6 +44,27 @@ void ColorRangeTracker::apply(double lo, double hi, DrawOptions* options) {
   }
 }
 
+void ColorRangeTracker::apply_field(const FrameState& frame, DrawOptions* options) {
+  options->field_scale.reset();
+  if (frame.color_by == TriangleField::DetF || frame.color_by == TriangleField::Clamped ||
+      mode == ColorRangeMode::Frame)
+    return;
+  const FieldStats s = field_stats(frame.color_by, frame.field);
+  if (s.count == 0) return;
+  if (!field_seen) {
+    run_field = s;
+    field_seen = true;
+  } else {
+    run_field.min = std::min(run_field.min, s.min);
+    run_field.max = std::max(run_field.max, s.max);
+    run_field.max_abs = std::max(run_field.max_abs, s.max_abs);
+    if (s.min_positive > 0.0 &&
+        (run_field.min_positive == 0.0 || s.min_positive < run_field.min_positive))
+      run_field.min_positive = s.min_positive;
+  }
+  options->field_scale = auto_field_scale(frame.color_by, run_field);
+}
+
 namespace {
 
 // The bodies' bounding box (every node).

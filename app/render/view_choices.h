@@ -10,6 +10,7 @@
 #include <string>
 
 #include "app/render/camera.h"
+#include "app/render/field_legend.h"
 #include "app/render/renderer.h"
 
 namespace invfree::render {
@@ -34,7 +35,18 @@ struct ColorRangeTracker {
   double run_lo = 1.0, run_hi = 1.0;  // det F extremes seen so far (positive ones)
   // Takes the frame's det F extremes; sets options->color_range and color_range_auto.
   void apply(double lo, double hi, DrawOptions* options);
-  void reset() { run_lo = run_hi = 1.0; }
+  // The scale of the field the frame is coloured by when it is not det F (Psi, stress):
+  // they have no natural fixed range, so Frame gives each frame its own (leaves
+  // options->field_scale unset) and Fixed and Run the widest over the frames so far, so
+  // that a movie's colours keep their meaning from frame to frame.
+  void apply_field(const FrameState& frame, DrawOptions* options);
+  void reset() {
+    run_lo = run_hi = 1.0;
+    field_seen = false;
+  }
+
+  bool field_seen = false;  // the field extremes below hold a frame's
+  FieldStats run_field{};   // the field's extremes over the frames so far
 };
 
 // A camera that keeps the bodies framed over a movie: each frame it moves a fraction of

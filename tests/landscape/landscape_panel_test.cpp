@@ -45,7 +45,7 @@ class Frame {
     unsigned char* pixels;
     int w, h;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    ImGui::StyleColorsLight();
+    ImGui::StyleColorsDark();  // as the live window
   }
   ~Frame() { ImGui::DestroyContext(ctx_); }
   // One frame with the panel in a window; returns the window's vertex count.
@@ -129,14 +129,15 @@ SceneDef scene(const std::string& name, const std::vector<std::string>& override
 
 std::string golden_dir() { return std::string(test::source_dir()) + "/tests/landscape/goldens"; }
 
-// The panel as the live window shows it (440 x 520 in a window), pixels compared with
+// The panel at the live window's size (its landscape window is 270 px wide at UI scale 1:
+// 254 inside, asked for 1.2 times as tall), pixels compared with
 // goldens/landscape_panel_*.png (INVFREE_UPDATE_GOLDENS=1 rewrites them: look first).
 void expect_panel_golden(const Simulation& sim, int selected, const std::string& name) {
   Frame f;
   LandscapePanelCache cache;
-  ImGui::GetIO().DisplaySize = ImVec2(460, 560);
-  f.run([&] { draw_landscape_panel(sim, selected, ImVec2(440, 520), cache); });
-  const test::RgbImage image = test::draw_data_image(ImGui::GetDrawData(), 460, 560);
+  ImGui::GetIO().DisplaySize = ImVec2(270, 360);
+  f.run([&] { draw_landscape_panel(sim, selected, ImVec2(254, 305), cache); });
+  const test::RgbImage image = test::draw_data_image(ImGui::GetDrawData(), 270, 360);
   const std::string m = test::check_golden(image, name, golden_dir(), test::golden_failure_dir());
   EXPECT_TRUE(m.empty()) << m;
 }

@@ -82,13 +82,57 @@ TEST(RenderCli, BadInputIsOneLineAndExitTwo) {
   const std::string dir = fresh_dir("bad");
   for (const std::string args :
        {"--size 12x12", "--size wide", "--size 1280x", "--frames 0", "--steps-per-frame 0",
-        "--scene nosuchscene", "--set material.nu=0.7", "--fps 0"}) {
+        "--scene nosuchscene", "--set material.nu=0.7", "--fps 0", "--color-by vonmises",
+        "--color-by", "--select-triangle 32", "--select-triangle -1",
+        "--select-triangle 9999999999"}) {
     const CommandResult r = run("render --out " + dir + " " + args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("invfree: ", 0), 0u) << r.err;
   }
   EXPECT_FALSE(fs::exists(dir) && !fs::is_empty(dir));
+}
+
+TEST(RenderCli, UnknownColoringNamesTheChoices) {
+  const std::string dir = fresh_dir("colorby");
+  const CommandResult r = run("render --frames 1 --color-by vonmises --out " + dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  for (const char* word : {"--color-by", "vonmises", "det-f", "psi", "stress", "clamped"})
+    EXPECT_NE(r.err.find(word), std::string::npos) << word << ": " << r.err;
+  // The default mesh has 32 triangles: 0..31.
+  const CommandResult out_of_range = run("render --frames 1 --select-triangle 32 --out " + dir);
+  EXPECT_EQ(out_of_range.code, 2);
+  EXPECT_NE(out_of_range.err.find("--select-triangle: 32 is out of range"), std::string::npos)
+      << out_of_range.err;
+  EXPECT_NE(out_of_range.err.find("0..31"), std::string::npos) << out_of_range.err;
+  EXPECT_FALSE(fs::exists(dir));  // refused before anything was written
+  const CommandResult help = run("render --help");
+  for (const char* word :
+       {"--color-by", "{det-f,psi,stress,clamped}", "--stress-glyphs", "--select-triangle"})
+    EXPECT_NE(help.out.find(word), std::string::npos) << word;
+}
+
+TEST(RenderCli, EveryColoringWithGlyphsAndASelectionWritesItsFrames) {
+  // Each --color-by on a compressing square, with the glyphs and an outlined triangle: the
+  // frames are written, and each colouring's last frame differs from det F's.
+  const auto last_frame = [](const std::string& extra, const std::string& name) {
+    const std::string dir = fresh_dir(name);
+    const CommandResult r =
+        run("render --frames 2 --steps-per-frame 100 --size 320x180 " + extra + " --out " + dir);
+    EXPECT_EQ(r.code, 0) << extra << "\n" << r.err;
+    invfree::test::RgbImage frame;
+    EXPECT_TRUE(invfree::test::load_png(dir + "/frame_000001.png", &frame)) << extra;
+    return frame;
+  };
+  const auto det_f = last_frame("", "detf");
+  for (const std::string field : {"psi", "stress", "clamped"}) {
+    const auto frame =
+        last_frame("--color-by " + field + " --stress-glyphs --select-triangle 5", field);
+    EXPECT_NE(frame.rgb, det_f.rgb) << field;
+  }
+  // det-f named is the default.
+  EXPECT_EQ(last_frame("--color-by det-f", "detf_named").rgb, det_f.rgb);
 }
 
 TEST(RenderCli, Mp4WithoutFfmpegSaysSoBeforeRendering) {

@@ -23,6 +23,7 @@
 #include "simulation.h"
 #include "tests/render/image_compare.h"
 #include "tests/test_paths.h"
+#include "triangle_fields.h"
 
 namespace invfree {
 namespace {
@@ -43,17 +44,21 @@ render::Renderer& renderer() {
   return *r;
 }
 
-test::RgbImage render_state(const Simulation& sim) {
+test::RgbImage render_state(const Simulation& sim, const render::CaptureOptions& capture = {},
+                            const render::DrawOptions& draw = {}) {
   render::Renderer& r = renderer();
-  r.draw(render::capture_frame_state(sim));
+  r.draw(render::capture_frame_state(sim, nullptr, capture), draw);
   std::vector<std::uint8_t> rgba;
   r.read_pixels(&rgba);
   return test::from_gl_pixels(rgba, r.width(), r.height());
 }
 
-void expect_golden(const Simulation& sim, const std::string& name) {
+void expect_golden(const Simulation& sim, const std::string& name,
+                   const render::CaptureOptions& capture = {},
+                   const render::DrawOptions& draw = {}) {
   const std::string message =
-      test::check_golden(render_state(sim), name, ::invfree::test::golden_dir(), ::invfree::test::golden_failure_dir());
+      test::check_golden(render_state(sim, capture, draw), name, ::invfree::test::golden_dir(),
+                         ::invfree::test::golden_failure_dir());
   EXPECT_TRUE(message.empty()) << message;
 }
 
@@ -173,6 +178,92 @@ TEST(RenderGolden, CompressFineMeshFoldsWithoutLoops) {
   EXPECT_FALSE(find_self_intersection(find_boundary(sim.mesh), sim.x, grid, scratch));
   EXPECT_LT(min_self_gap(sim), sim.scene.dhat);  // the fold's faces are in contact
   expect_golden(sim, "compress_fold_n64");
+}
+
+// The colourings of issue 26 (app/field_colormap.h), each on the state that tells its
+// story; the legend's title, unit, ticks and markers are part of the picture.
+render::CaptureOptions colored_by(TriangleField field, bool glyphs = false) {
+  render::CaptureOptions c;
+  c.color_by = field;
+  c.stress_glyphs = glyphs;
+  return c;
+}
+
+std::vector<double> field_of(const Simulation& sim, TriangleField field) {
+  std::vector<double> v;
+  triangle_field(sim, field, &v);
+  return v;
+}
+
+TEST(RenderGolden, CompressPsiAtMaximumCompression) {
+  // n_seg 8 squashed to the ceiling's stop: the energy density spans more than a decade,
+  // highest in the middle of the contact and lowest at the bulging sides; the log scale
+  // grades the whole body instead of showing one hot spot on a pale square.
+  Simulation sim = make_simulation(scene("compress", {"mesh.n_seg=8"}));
+  run_to(sim, 280);
+  const auto psi = field_of(sim, TriangleField::Psi);
+  const auto [lo, hi] = std::minmax_element(psi.begin(), psi.end());
+  EXPECT_GT(*hi / *lo, 10.0);
+  expect_golden(sim, "compress_psi", colored_by(TriangleField::Psi));
+}
+
+TEST(RenderGolden, CompressStressAtMaximumCompression) {
+  // n_seg 8 squashed: compression (blue) through the body between the plates, strongest
+  // at the ends of the ground contact, and tension (red) along the top under the ceiling.
+  Simulation sim = make_simulation(scene("compress", {"mesh.n_seg=8"}));
+  run_to(sim, 280);
+  const auto stress = field_of(sim, TriangleField::Stress);
+  EXPECT_LT(*std::min_element(stress.begin(), stress.end()), 0.0);
+  EXPECT_GT(*std::max_element(stress.begin(), stress.end()), 0.0);
+  expect_golden(sim, "compress_stress", colored_by(TriangleField::Stress));
+}
+
+TEST(RenderGolden, ClampedWhereNewtonsHessianDeparts) {
+  // n_seg 8 at step 70 (det F within 2% of 1): neo-Hookean's twist eigenvalue is negative
+  // exactly where det F < 1, so the projection clamps one eigenvalue there (orange) and
+  // none where det F >= 1 (white: Newton's Hessian is the true one); both are on it.
+  Simulation sim = make_simulation(scene("compress", {"mesh.n_seg=8"}));
+  run_to(sim, 70);
+  const auto clamped = field_of(sim, TriangleField::Clamped);
+  EXPECT_GT(std::count(clamped.begin(), clamped.end(), 0.0), 10);
+  EXPECT_GT(std::count(clamped.begin(), clamped.end(), 1.0), 10);
+  expect_golden(sim, "compress_clamped", colored_by(TriangleField::Clamped));
+}
+
+TEST(RenderGolden, StressGlyphsOnACoarseMesh) {
+  // The default mesh half squashed, coloured by stress: a cross per triangle, its vertical
+  // stroke (the compression between the plates, blue) the longer.
+  Simulation sim = make_simulation(scene("compress"));
+  run_to(sim, 200);
+  render::DrawOptions draw;
+  draw.stress_glyphs = true;
+  expect_golden(sim, "compress_stress_glyphs", colored_by(TriangleField::Stress, true), draw);
+}
+
+TEST(RenderGolden, StressGlyphsThinnedOnAFineMesh) {
+  // n_seg 16 nearly squashed, over the det F colours: triangles smaller than a glyph cell,
+  // so one glyph per cell; vertical compression between the plates, horizontal tension
+  // along the top under the ceiling. (Edges off, as `render` leaves them where too dense.)
+  Simulation sim = make_simulation(scene("compress", {"mesh.n_seg=16"}));
+  run_to(sim, 250);
+  render::DrawOptions draw;
+  draw.stress_glyphs = true;
+  draw.edges = false;
+  expect_golden(sim, "compress_glyphs_thinned", colored_by(TriangleField::DetF, true), draw);
+}
+
+TEST(RenderGolden, SelectedTriangleIsOutlined) {
+  // The inspector's triangle: a dark and yellow outline over the fills and the mesh, here
+  // on Psi's colours (whose low end is a pale yellow).
+  Simulation sim = make_simulation(scene("compress"));
+  run_to(sim, 150);
+  render::DrawOptions draw;
+  draw.selected_triangle = 5;
+  expect_golden(sim, "compress_selected", colored_by(TriangleField::Psi), draw);
+  // Out of range: nothing outlined, the same pixels as no selection.
+  draw.selected_triangle = sim.mesh.triangle_count();
+  EXPECT_EQ(render_state(sim, colored_by(TriangleField::Psi), draw).rgb,
+            render_state(sim, colored_by(TriangleField::Psi)).rgb);
 }
 
 TEST(RenderGolden, SameStateSamePixels) {
