@@ -103,7 +103,9 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   // Layout: the title line (the unit in it), the plot (square cells) with the s2 ticks on its
   // left and the s1 ticks under it, and the colour bar either on the right (a wide panel) or
   // under the plot (a narrow one, as the live window's): whichever gives the larger plot.
-  const std::string title = std::string("\u03a8(\u03c3\u2081, \u03c3\u2082) in Pa: ") + model_label(model);
+  std::string title = std::string("\u03a8(\u03c3\u2081, \u03c3\u2082) in Pa: ") + model_label(model);
+  if (ImGui::CalcTextSize(title.c_str()).x > size.x)  // "stable neo-Hookean" in a narrow window
+    title = std::string("\u03a8 in Pa: ") + model_label(model);
   const float bar_w = 9.0f, bar_label = ImGui::CalcTextSize("100k").x;
   const float left = p0.x + ImGui::CalcTextSize("\u22120.5").x + 8.0f;
   const float top = p0.y + line + 6.0f;
