@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <future>
 #include <optional>
 
@@ -36,6 +37,14 @@ namespace {
 // Frames drawn after input arrives before the window may idle: ImGui settles hover and
 // focus in those.
 constexpr int kBusyFrames = 3;
+
+// CPU time of the calling thread (ms): what a part of the frame costs, whatever else the
+// machine runs meanwhile (the benchmark line's breakdown).
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
 
 std::string no_window_message(const std::string& reason) {
   return "cannot open the live window (" + reason +
@@ -66,6 +75,7 @@ struct LiveAppImpl {
   MouseGestures mouse;
   TriangleInspection inspection;
   LandscapePanelCache landscape_cache;
+  LiveApp::PartTimes part_times;
   long empty_clicks = 0;
   FrameRecording recording;
   bool screenshot_requested = false;
@@ -74,6 +84,10 @@ struct LiveAppImpl {
   FrameRateMeter frame_rate;
   float applied_ui_scale = 0.0f;          // the UI scale the fonts were built at
   render::ColorRangeTracker color_range;  // the det F colour range over the run
+  // What the field's range over the run was gathered for: a new colouring or mesh starts it
+  // again (det F's range is kept, as before).
+  TriangleField field_range_of = TriangleField::DetF;
+  long field_range_generation = 0;
   int busy_frames = kBusyFrames;          // frames left to draw before idling
 
   ~LiveAppImpl() {
@@ -313,7 +327,9 @@ void LiveAppImpl::build_ui(const Injection* inject) {
   const render::PixelRect r = visible_rect();
   const WidgetRect area{static_cast<float>(r.x / ps), static_cast<float>(r.y / ps),
                         static_cast<float>((r.x + r.w) / ps), static_cast<float>((r.y + r.h) / ps)};
+  const double inspection_start = thread_cpu_ms();
   draw_inspection_windows(area);
+  part_times.inspection_ms += thread_cpu_ms() - inspection_start;
   draw_help_overlay(panel);
   draw_banners(*controller, panel, area);
   mouse.draw_markers(*controller, view.transform(), ps);
@@ -337,8 +353,17 @@ std::future<void> LiveAppImpl::draw_picture() {
   draw_options.stress_glyphs = panel.stress_glyphs;
   color_range.mode = panel.color_range;
   color_range.apply(controller->stats().min_det_f, controller->stats().max_det_f, &draw_options);
+  const double capture_start = thread_cpu_ms();
   const render::FrameState state = render::capture_frame_state(
       controller->simulation(), &controller->det_f(), {panel.color_by, panel.stress_glyphs});
+  part_times.capture_ms += thread_cpu_ms() - capture_start;
+  if (panel.color_by != field_range_of ||
+      controller->mesh_generation() != field_range_generation) {
+    color_range.field_seen = false;
+    field_range_of = panel.color_by;
+    field_range_generation = controller->mesh_generation();
+  }
+  color_range.apply_field(state, &draw_options);
   const long revision = controller->revision();
   std::future<void> stepping = start_steps();
   renderer->draw(state, draw_options);
@@ -450,6 +475,9 @@ void LiveApp::select_triangle(int t) {
     a.select(t);
   else
     a.inspection.release();
+}
+LiveApp::PartTimes LiveApp::part_times() const {
+  return impl_->part_times;
 }
 long LiveApp::empty_clicks() const {
   return impl_->empty_clicks;

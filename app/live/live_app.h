@@ -124,6 +124,15 @@ class LiveApp {
   // Left clicks on the picture that hit no triangle while none was selected (the web
   // page's tap there plays or pauses); a click that selects or releases is not counted.
   long empty_clicks() const;
+  // CPU time (ms, the main thread's) spent so far on two parts of the frames: copying the
+  // state for the picture with its colouring (capture_frame_state: det F, or the field the
+  // triangles are coloured by, and the glyphs' stresses), and the inspector's and the
+  // landscape's windows (the analysis, its finite differences, the ImGui drawing).
+  struct PartTimes {
+    double capture_ms = 0.0;
+    double inspection_ms = 0.0;
+  };
+  PartTimes part_times() const;
   // What the panel's view section colours the triangles by (its combo, or this setter).
   TriangleField color_by() const;
   void set_color_by(TriangleField field);

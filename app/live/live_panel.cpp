@@ -556,7 +556,8 @@ void view_section(PanelState& ps) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "det F colour scale: fixed 0.25 to 4, or symmetric in log det F around 1 "
-        "from the run so far or from this frame (key C)");
+        "from the run so far or from this frame (key C); ψ and stress: the widest range "
+        "so far (fixed, run) or this frame's");
   color_by_row(ps);
 }
 

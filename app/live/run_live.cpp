@@ -1,6 +1,7 @@
 // `invfree live`'s loop around one LiveApp (live_app.h): frames until the window closes,
 // the frame count is reached or the caller stops it, then the final screenshot, the
-// benchmark line, and the exit code (a failed step under --frames is a failed run).
+// benchmark line (with the CPU time of the picture's capture and of the inspector's
+// windows per frame), and the exit code (a failed step under --frames is a failed run).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -41,12 +42,15 @@ int run_live(const LiveOptions& options) {
     const long frames = app->frames_drawn();
     const SceneDef& s = lc.settings();
     const long steps = lc.steps_total();
+    const LiveApp::PartTimes parts = app->part_times();
+    const double per_frame = 1.0 / std::max<long>(1, frames);
     std::printf(
         "live bench: %ld frames in %.2f s = %.1f frames/s (scene %s, n_seg %d, h %g, %d "
         "step(s)/frame; %ld steps, "
-        "%.2f ms/step, %.2f ms/frame)\n",
+        "%.2f ms/step, %.2f ms/frame; capture %.3f ms/frame, inspector %.3f ms/frame of CPU)\n",
         frames, seconds, frames / seconds, s.name.c_str(), s.n_seg, s.h, lc.steps_per_frame, steps,
-        steps ? lc.step_ms_total() / steps : 0.0, 1e3 * seconds / std::max<long>(1, frames));
+        steps ? lc.step_ms_total() / steps : 0.0, 1e3 * seconds * per_frame,
+        parts.capture_ms * per_frame, parts.inspection_ms * per_frame);
   }
   if (!lc.banner.empty()) {
     std::fprintf(stderr, "invfree: live: %s\n", lc.banner.c_str());

@@ -1,17 +1,50 @@
 // The live window's inspector under Xvfb, with mouse and keys injected into ImGui as a
 // person's would arrive: a click at a triangle's centroid inspects exactly that triangle and
 // the Inspector shows the core's analysis of it at that step; Esc, a click on empty space and
-// a mesh rebuild release it; a drag selects nothing.
+// a mesh rebuild release it; a drag selects nothing; the colouring changes the picture; and
+// goldens of the inspector with the stress colouring and of the psi colouring with glyphs.
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <vector>
 
 #include "app/live/live_app.h"
 #include "app/live/mouse_gestures.h"
 #include "scene_io/builtin_scenes.h"
+#include "tests/render/image_compare.h"
+#include "tests/run_command.h"
+#include "tests/test_paths.h"
 #include "triangle_fields.h"
 
 namespace invfree::live {
 namespace {
+
+const std::string kGoldenDir = std::string(::invfree::test::source_dir()) + "/tests/live/goldens";
+
+std::string temp_dir() {
+  const std::string d = ::testing::TempDir() + "/live_inspector_" + std::to_string(::getpid());
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+test::RgbImage rgb(const Image& img) {
+  test::RgbImage out;
+  out.width = img.width;
+  out.height = img.height;
+  out.rgb.reserve(static_cast<size_t>(img.width) * img.height * 3);
+  for (size_t i = 0; i < img.rgba.size(); i += 4)
+    out.rgb.insert(out.rgb.end(), {img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]});
+  return out;
+}
+
+long differing_pixels(const Image& a, const Image& b) {
+  const test::ImageDiff d = test::compare_images(rgb(a), rgb(b));
+  return d.same_size ? d.differing : -1;
+}
 
 // One frame with the pointer resting on the panel's corner: a frame that is drawn even
 // while paused and idle (a frame without input then waits for some and draws nothing).
@@ -213,6 +246,114 @@ TEST(LiveInspector, AMeshRebuildReleases) {
   app->controller().select_scene(1);
   show(*app);
   EXPECT_EQ(app->inspected(), nullptr);
+}
+
+TEST(LiveInspector, TheColouringChangesThePicture) {
+  auto app = open_compress(120);
+  ASSERT_TRUE(app);
+  EXPECT_EQ(app->color_by(), TriangleField::DetF);  // the default
+  Image det_f, stress, psi;
+  app->frame(nullptr, &det_f);
+  app->set_color_by(TriangleField::Stress);
+  app->frame(nullptr, &stress);
+  app->set_color_by(TriangleField::Psi);
+  app->frame(nullptr, &psi);
+  EXPECT_GT(differing_pixels(det_f, stress), 5000);
+  EXPECT_GT(differing_pixels(stress, psi), 5000);
+}
+
+// The numbers of `key`'s value in the JSON text `json` (a number, or arrays of them, read
+// in order; `inspect --json` writes each number so that it reads back to the same double).
+std::vector<double> numbers_of(const std::string& json, const std::string& key) {
+  std::vector<double> out;
+  size_t i = json.find("\"" + key + "\":");
+  if (i == std::string::npos) return out;
+  i += key.size() + 3;
+  int depth = 0;
+  for (; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '[' || c == '{') ++depth;
+    if (c == ']' || c == '}') --depth;
+    if (depth < 0 || (depth == 0 && (c == ',' || c == '\n'))) break;
+    if ((c >= '0' && c <= '9') || c == '-') {
+      char* end = nullptr;
+      out.push_back(std::strtod(json.c_str() + i, &end));
+      i = static_cast<size_t>(end - json.c_str()) - 1;
+    }
+  }
+  return out;
+}
+
+std::vector<double> row_major(const Mat2& m) {
+  return {m(0, 0), m(0, 1), m(1, 0), m(1, 1)};
+}
+std::vector<double> values(const auto& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+TEST(LiveInspector, ShowsWhatInspectReports) {
+  // The Inspector 120 steps into compress, for the triangle clicked, against
+  // `invfree inspect --step 120 --triangle T --json` in its own process: the same numbers.
+  auto app = open_compress(120);
+  ASSERT_TRUE(app);
+  const int t = probe_triangle(app->controller().simulation());
+  click(*app, app->to_window(centroid(app->controller().simulation(), t)));
+  const Inspected* in = app->inspected();
+  ASSERT_NE(in, nullptr);
+  ASSERT_EQ(in->triangle, t);
+  ASSERT_EQ(in->step, 120);
+  const test::CommandResult r =
+      test::run_command(::invfree::test::exe_path(),
+                        "inspect --scene compress --step 120 --json --triangle " + std::to_string(t),
+                        true);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const StressAnalysis& a = in->analysis;
+  EXPECT_EQ(numbers_of(r.out, "triangle"), std::vector<double>{double(t)});
+  EXPECT_EQ(numbers_of(r.out, "mu"), std::vector<double>{a.lame.mu});
+  EXPECT_EQ(numbers_of(r.out, "lambda"), std::vector<double>{a.lame.lambda});
+  EXPECT_EQ(numbers_of(r.out, "F"), row_major(a.F));
+  EXPECT_EQ(numbers_of(r.out, "U"), row_major(a.svd.U));
+  EXPECT_EQ(numbers_of(r.out, "sigma"), values(a.svd.sigma));
+  EXPECT_EQ(numbers_of(r.out, "V"), row_major(a.svd.V));
+  EXPECT_EQ(numbers_of(r.out, "J"), std::vector<double>{a.J});
+  EXPECT_EQ(numbers_of(r.out, "psi"), std::vector<double>{a.psi});
+  EXPECT_EQ(numbers_of(r.out, "P"), row_major(a.P));
+  EXPECT_EQ(numbers_of(r.out, "cauchy"), row_major(a.cauchy));
+  EXPECT_EQ(numbers_of(r.out, "values"), values(a.principal_stress));
+  EXPECT_EQ(numbers_of(r.out, "eigenvalues"), values(a.eigenvalues));
+  EXPECT_EQ(numbers_of(r.out, "projected_eigenvalues"), values(a.projected_eigenvalues));
+  EXPECT_EQ(numbers_of(r.out, "clamped"), std::vector<double>{double(a.clamped)});
+  EXPECT_EQ(numbers_of(r.out, "fd_error_P"), std::vector<double>{in->fd.P});
+  EXPECT_EQ(numbers_of(r.out, "fd_error_dPdF"), std::vector<double>{in->fd.dPdF});
+}
+
+int run(const std::string& args) {
+  const std::string cmd = std::string(::invfree::test::exe_path()) + " " + args + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+void expect_golden(const std::string& args, const std::string& name) {
+  const std::string png = temp_dir() + "/" + name + ".png";
+  ASSERT_EQ(run("live " + args + " --force --screenshot " + png), 0) << args;
+  test::RgbImage actual;
+  ASSERT_TRUE(test::load_png(png, &actual)) << png;
+  const std::string e = test::check_golden(actual, name, kGoldenDir, temp_dir());
+  EXPECT_TRUE(e.empty()) << e;
+}
+
+TEST(LiveInspector, InspectorAndStressColouringMatchGolden) {
+  // 1.2 s into compress, the ceiling pressing: a triangle right of the middle, near the top,
+  // inspected (outlined; the Inspector on the picture's left, away from it; its twist
+  // eigenvalue negative and clamped), coloured by principal stress.
+  expect_golden("--scene compress --frames 120 --select-triangle 21 --color-by stress",
+                "live_inspector_stress");
+}
+
+TEST(LiveInspector, PsiColouringWithGlyphsMatchesGolden) {
+  // The same moment without the panel: psi on its log scale and the principal-stress glyphs.
+  expect_golden("--scene compress --frames 120 --no-panel --color-by psi --stress-glyphs",
+                "live_psi_glyphs");
 }
 
 }  // namespace
