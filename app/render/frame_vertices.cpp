@@ -328,7 +328,7 @@ void add_selected_outline(Shapes& world, const std::vector<Vec2>& p, const Frame
 // stress) or each category's triangle count (clamped), and below it a ring, for inverted
 // triangles are ringed in every colouring.
 void draw_field_bar(FrameVertices& res, const FrameLayout& L, const FieldScale& scale,
-                    const FieldStats& stats, double x0, double y, double pad) {
+                    const FieldStats& stats, bool mass_spring, double x0, double y, double pad) {
   const double s = L.scale;
   Shapes& panel = res.shapes;
   const double body = res.font_sizes[kBody], small = res.font_sizes[kSmall];
@@ -338,7 +338,9 @@ void draw_field_bar(FrameVertices& res, const FrameLayout& L, const FieldScale& 
   const double swatch_y1 = L.height - pad, swatch_y0 = swatch_y1 - swatch_h;
   const double bar_y1 = std::round(swatch_y0 - 1.6 * small);
   const double bar_title_y = y + 2.0 * body;
-  const FieldLegendWords words = field_legend_words(scale);
+  FieldLegendWords words = field_legend_words(scale);
+  // The course's springs have no energy or stress per triangle: the field is 0 there.
+  if (mass_spring) words.subtitle += "\nmass-spring: none (0)";
   const FieldUnit unit = field_unit(scale);
   res.add_text(words.title, kBody, x0, bar_title_y, kInk);
   const double text_width = L.panel.x + L.panel.w - 0.5 * pad - x0;
@@ -491,7 +493,7 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   }
 
   if (field) {  // another field's bar in place of det F's
-    draw_field_bar(res, L, *field, field_stats, x0, y, pad);
+    draw_field_bar(res, L, *field, field_stats, !scene.has_triangle_elasticity(), x0, y, pad);
     return backdrop_end;
   }
   // Colour bar: vertical, stretch up, with the det F <= 0 swatch below it.

@@ -266,6 +266,36 @@ TEST(RenderGolden, SelectedTriangleIsOutlined) {
             render_state(sim, colored_by(TriangleField::Psi)).rgb);
 }
 
+TEST(RenderGolden, InvertedTrianglesAreRingedInEveryColouring) {
+  // The rings mark det F <= 0 whatever fills the triangles (their fill is the field's).
+  Simulation sim = make_simulation(scene("compress", {"material.model=linear", "material.E=1e4",
+                                                      "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
+  run_to(sim, 23);
+  for (const TriangleField field :
+       {TriangleField::Psi, TriangleField::Stress, TriangleField::Clamped}) {
+    render::DrawOptions no_rings;
+    no_rings.ring_inverted = false;
+    const test::ImageDiff d = test::compare_images(render_state(sim, colored_by(field)),
+                                                   render_state(sim, colored_by(field), no_rings));
+    EXPECT_GT(d.differing, 2000) << enum_name(kTriangleFieldNames, field);
+  }
+}
+
+TEST(RenderGolden, MassSpringScenesHaveNoStressToDraw) {
+  // The course's springs have no stress per triangle: no glyph data, the fields are 0, and
+  // asking for glyphs changes no pixel.
+  Simulation sim = make_simulation(scene("course-1-mass-spring"));
+  run_to(sim, 20);
+  const render::FrameState f =
+      render::capture_frame_state(sim, nullptr, colored_by(TriangleField::Stress, true));
+  EXPECT_TRUE(f.principal_stress.empty());
+  EXPECT_EQ(f.field, std::vector<double>(sim.mesh.triangles.size(), 0.0));
+  render::DrawOptions glyphs;
+  glyphs.stress_glyphs = true;
+  EXPECT_EQ(render_state(sim, colored_by(TriangleField::Stress, true), glyphs).rgb,
+            render_state(sim, colored_by(TriangleField::Stress)).rgb);
+}
+
 TEST(RenderGolden, SameStateSamePixels) {
   // Nothing in the picture depends on the wall clock or on what was drawn before.
   Simulation a = make_simulation(scene("compress"));
