@@ -2,12 +2,18 @@
 """The web page (docs/web.md) in headless Chromium: it loads with no console error, the
 simulation advances (step count and min det F read from window.invfree), the mu slider
 changes mu and the picture, the first frame matches its golden, the Screenshot button
-downloads a PNG of what the page shows, and a touch tap plays and pauses.
+downloads a PNG of what the page shows, a touch tap plays and pauses, and a click or a tap
+on a triangle inspects it (issue 26: the selected triangle's values, its outline, the
+inspector's golden, the release on empty space, the values against `invfree inspect`).
 
-Usage: web_page_test.py PAGE_DIR GOLDEN_DIR OUT_DIR
+Usage: web_page_test.py PAGE_DIR GOLDEN_DIR OUT_DIR [INVFREE]
   PAGE_DIR    the built page (build/web: index.html, index.js, index.wasm)
-  GOLDEN_DIR  tests/web/goldens; INVFREE_UPDATE_GOLDENS=1 writes the golden instead
+  GOLDEN_DIR  tests/web/goldens; INVFREE_UPDATE_GOLDENS=1 writes the goldens instead
   OUT_DIR     where a failing comparison leaves the actual and difference images
+  INVFREE     the desktop program: the inspected triangle's values are compared with its
+              `inspect --json` for the same triangle and step (left out, or a program
+              without `inspect`: said in the output, not compared)
+Environment: INVFREE_WEB_TESTS=name,name runs only those tests (the names PASS/FAIL print).
 Exit: 0 all passed, 1 a check failed, 77 skipped (the toolchain or the page is missing;
 the reason is printed).
 
@@ -18,6 +24,7 @@ desktop goldens are not compared here.
 """
 
 import os
+import re
 import sys
 import time
 
@@ -88,11 +95,11 @@ def check_no_console_error(driver, what):
         fail(f"{what}: console errors: {errors}")
 
 
-def test_first_frame(driver, url, golden_dir, out_dir):
-    load(driver, url + "?paused=1")
-    check_no_console_error(driver, "paused page")
-    actual = screenshot(driver)
-    golden = os.path.join(golden_dir, "first_frame.png")
+def compare_golden(actual, name, golden_dir, out_dir, box=None):
+    """`actual` (the page's screenshot) against goldens/NAME under the desktop goldens' rule,
+    within `box` (left, top, right, bottom; the whole picture when None).
+    INVFREE_UPDATE_GOLDENS=1 writes the golden instead."""
+    golden = os.path.join(golden_dir, name)
     if os.environ.get("INVFREE_UPDATE_GOLDENS") == "1":
         actual.save(golden)
         print(f"wrote {golden}")
@@ -102,16 +109,25 @@ def test_first_frame(driver, url, golden_dir, out_dir):
         fail(f"no golden {golden} (INVFREE_UPDATE_GOLDENS=1 writes it)")
     expected = Image.open(golden).convert("RGB")
     if expected.size != actual.size:
-        fail(f"first frame is {actual.size}, golden {expected.size}")
-    differing, biggest = differing_pixels(actual, expected)
-    allowed = int(0.001 * WIDTH * HEIGHT)
+        fail(f"{name}: the page is {actual.size}, the golden {expected.size}")
+    box = box or (0, 0, actual.size[0], actual.size[1])
+    differing, biggest = differing_pixels(actual.crop(box), expected.crop(box))
+    allowed = int(0.001 * (box[2] - box[0]) * (box[3] - box[1]))
+    stem = os.path.splitext(name)[0]
     if differing > allowed:
         os.makedirs(out_dir, exist_ok=True)
-        actual.save(os.path.join(out_dir, "first_frame_actual.png"))
-        biggest.point(lambda v: min(255, 16 * v)).save(os.path.join(out_dir, "first_frame_diff.png"))
-        fail(f"first frame differs from {golden} in {differing} pixels (> {allowed}); "
-             f"actual and 16x difference in {out_dir}")
-    print(f"first frame matches its golden ({differing} of {WIDTH * HEIGHT} pixels over 5/255)")
+        actual.save(os.path.join(out_dir, f"{stem}_actual.png"))
+        biggest.point(lambda v: min(255, 16 * v)).save(os.path.join(out_dir, f"{stem}_diff.png"))
+        fail(f"{name}: the page differs from {golden} in {differing} pixels (> {allowed}) of "
+             f"{box}; actual and 16x difference in {out_dir}")
+    print(f"{name}: matches its golden ({differing} of {(box[2] - box[0]) * (box[3] - box[1])} "
+          f"pixels in {box} over 5/255)")
+
+
+def test_first_frame(driver, url, golden_dir, out_dir):
+    load(driver, url + "?paused=1")
+    check_no_console_error(driver, "paused page")
+    compare_golden(screenshot(driver), "first_frame.png", golden_dir, out_dir)
 
 
 def test_advances(driver, url):
@@ -223,11 +239,261 @@ def test_touch_tap(driver, url):
     print("touch: a tap on the picture plays and pauses, a tap on the panel does not")
 
 
+# --- Picking (issue 26, item 2): a click or a tap on a triangle inspects it -------------------
+
+PICK_STEPS = 40  # clicks on Step before picking: the square is pressed (F away from I)
+
+
+def triangle_centroids(driver, count):
+    """Every triangle's centroid in the page's pixels, as the page computes it
+    (Module._invfree_triangle_window_x/y: the mesh's current positions through the view)."""
+    return driver.execute_script(
+        "const n = arguments[0], out = [];"
+        "for (let t = 0; t < n; ++t)"
+        "  out.push([Module._invfree_triangle_window_x(t), Module._invfree_triangle_window_y(t)]);"
+        "return out;", count)
+
+
+def inside(rect, x, y, margin=0.0):
+    x0, y0, x1, y1 = rect
+    return x0 - margin <= x <= x1 + margin and y0 - margin <= y <= y1 + margin
+
+
+def pickable(state, centroids, margin=12.0):
+    """Triangles whose centroid is in the picture, away from the panel and from the
+    inspector's window (where a click is ImGui's)."""
+    panel_right = max(r[2] for name, r in state["widgets"].items()
+                      if name not in ("note", "inspector"))
+    out = []
+    for t, (x, y) in enumerate(centroids):
+        if x is None or y is None:
+            continue
+        if not (panel_right + margin < x < WIDTH - margin and margin < y < HEIGHT - margin):
+            continue
+        if "inspector" in state["widgets"] and inside(state["widgets"]["inspector"], x, y, margin):
+            continue
+        out.append(t)
+    return out
+
+
+def outline_pixels(picture, state):
+    """The selected triangle's outline as drawn (the renderer's yellow, 255 219 0, and its
+    anti-aliased edge), in the picture right of the panel and outside the inspector's window:
+    (count, bounding box) read off the screenshot, independently of the page's own
+    numbers."""
+    left = int(max(r[2] for name, r in state["widgets"].items()
+                      if name not in ("note", "inspector"))) + 1
+    inspector = state["widgets"].get("inspector")
+    xs, ys = [], []
+    pixels = picture.load()
+    for y in range(HEIGHT):
+        for x in range(left, WIDTH):
+            r, g, b = pixels[x, y]
+            if r > 200 and g > 150 and b < 80 and not (inspector and inside(inspector, x, y, 1)):
+                xs.append(x)
+                ys.append(y)
+    if not xs:
+        return 0, None
+    return len(xs), (min(xs), min(ys), max(xs), max(ys))
+
+
+def check_outline_at(picture, state, x, y, what):
+    count, box = outline_pixels(picture, state)
+    if not box:
+        fail(f"{what}: no outline (yellow pixels) in the picture")
+    x0, y0, x1, y1 = box
+    if not (x0 - 2 <= x <= x1 + 2 and y0 - 2 <= y <= y1 + 2):
+        fail(f"{what}: the outline drawn at {box} is not around the clicked point ({x:.0f}, {y:.0f})")
+    if (x1 - x0) * (y1 - y0) > 0.1 * WIDTH * HEIGHT:
+        fail(f"{what}: the outline's box {box} is larger than a triangle")
+    return box
+
+
+def check_selected_sane(sel, t, what):
+    """The inspected triangle's values as window.invfree publishes them: triangle t, an
+    elastic triangle that is not inverted (J > 0), J = sigma1 * sigma2 (the lecture's signed
+    SVD), sigma1 >= sigma2, four finite eigenvalues whose projection is max(0, lambda) and
+    whose negative count is `clamped`."""
+    if sel is None:
+        fail(f"{what}: nothing selected")
+    if sel["triangle"] != t:
+        fail(f"{what}: selected triangle {sel['triangle']}, expected {t}")
+    if not sel.get("elastic", False):
+        fail(f"{what}: triangle {t} is not elastic in the compress scene: {sel}")
+    J, (s1, s2) = sel["J"], sel["sigma"]
+    if not (J is not None and J > 0):
+        fail(f"{what}: J = {J}, expected > 0")
+    if abs(J - s1 * s2) > 1e-9 * max(1.0, abs(J)):
+        fail(f"{what}: J = {J} but sigma1 * sigma2 = {s1 * s2}")
+    if not s1 >= s2:
+        fail(f"{what}: sigma not ordered: {sel['sigma']}")
+    if sel["psi"] is None or sel["psi"] < 0:
+        fail(f"{what}: psi = {sel['psi']}")
+    eig, proj = sel["eigenvalues"], sel["projected_eigenvalues"]
+    if len(eig) != 4 or any(v is None for v in eig) or len(proj) != 4:
+        fail(f"{what}: eigenvalues not four finite numbers: {eig}, projected {proj}")
+    for e, q in zip(eig, proj):
+        if q != max(0.0, e):
+            fail(f"{what}: projected eigenvalues {proj} are not max(0, {eig})")
+    if sel["clamped"] != sum(1 for e in eig if e < 0):
+        fail(f"{what}: clamped {sel['clamped']} but eigenvalues {eig}")
+
+
+def inspect_cli(invfree, step, triangle):
+    """`invfree inspect --json` for the compress scene at `step`, or None when this program
+    has no inspect command."""
+    import json
+    import subprocess
+    usage = subprocess.run([invfree, "--help"], capture_output=True, text=True).stdout
+    if not re.search(r"^\s*inspect\s", usage, re.M):
+        return None
+    run = subprocess.run([invfree, "inspect", "--scene", "compress", "--step", str(step),
+                          "--triangle", str(triangle), "--json"], capture_output=True, text=True)
+    if run.returncode != 0:
+        fail(f"invfree inspect --step {step} --triangle {triangle} exited {run.returncode}: "
+             f"{run.stderr.strip()}")
+    return json.loads(run.stdout)
+
+
+def close(a, b, rel=1e-6, abs_=1e-9):
+    return abs(a - b) <= rel * max(abs(a), abs(b)) + abs_
+
+
+def compare_with_inspect(sel, invfree):
+    """The page's values against `invfree inspect` for the same triangle and step. The page
+    solves with the core's own LDL^T (no CHOLMOD) and another compiler: the same numbers to
+    about 1e-6, not to the bit."""
+    if not invfree:
+        print("  (no invfree program given: not compared with invfree inspect)")
+        return
+    if not os.access(invfree, os.X_OK):
+        print(f"  ({invfree} is not built: not compared with invfree inspect)")
+        return
+    cli = inspect_cli(invfree, sel["step"], sel["triangle"])
+    if cli is None:
+        print(f"  ({invfree} has no inspect command: not compared with invfree inspect)")
+        return
+    pairs = [("J", sel["J"], cli["J"]), ("psi", sel["psi"], cli["psi"])]
+    pairs += [(f"sigma[{k}]", sel["sigma"][k], cli["sigma"][k]) for k in range(2)]
+    scale = max(abs(v) for v in cli["eigenvalues"])
+    for k in range(4):
+        pairs.append((f"eigenvalues[{k}]", sel["eigenvalues"][k], cli["eigenvalues"][k]))
+    largest = 0.0
+    for name, page, desktop in pairs:
+        tolerance_abs = 1e-6 * scale if name.startswith("eigen") else 1e-9
+        if not close(page, desktop, abs_=tolerance_abs):
+            fail(f"triangle {sel['triangle']} at step {sel['step']}: the page's {name} {page} "
+                 f"differs from invfree inspect's {desktop}")
+        largest = max(largest, abs(page - desktop) / max(abs(desktop), 1e-300))
+    if sel["clamped"] != cli["clamped"]:
+        fail(f"clamped: page {sel['clamped']}, invfree inspect {cli['clamped']}")
+    print(f"  equals invfree inspect --step {sel['step']} --triangle {sel['triangle']} "
+          f"(J {cli['J']:.6f}, psi {cli['psi']:.6g}, clamped {cli['clamped']}; largest relative "
+          f"difference {largest:.1e})")
+
+
+def settle(driver, what, frames=3):
+    """Waits for a few more frames (what the page shows has caught up with its state)."""
+    now = pd.page_state(driver)["frames"]
+    return pd.wait_for(driver, lambda s: s["frames"] >= now + frames, what)
+
+
+def wait_selected(driver, t, what):
+    return pd.wait_for(driver, lambda s: (s["selected"] or {}).get("triangle") == t and
+                       s["selected"]["step"] == s["steps"], what)["selected"]
+
+
+def test_picking(driver, url, golden_dir, out_dir, invfree):
+    # Paused after PICK_STEPS steps: a click at triangle A's centroid inspects A (with the
+    # values of this step), a touch tap at B's inspects B, a click on empty space below the
+    # body releases it (and does not play), the values follow the body while it plays.
+    start = load(driver, url + "?paused=1")
+    if "selected" not in start or "triangles" not in start:
+        fail(f"the page publishes no inspected triangle (`selected`, `triangles`): built "
+             f"before picking? window.invfree has {sorted(start)}")
+    state = step_n_times(driver, PICK_STEPS)
+    if state["selected"] is not None:
+        fail(f"a triangle is selected before any click: {state['selected']}")
+    centroids = triangle_centroids(driver, state["triangles"])
+    candidates = pickable(state, centroids)
+    if len(candidates) < 2:
+        fail(f"fewer than two triangles of {state['triangles']} lie in the picture: {centroids[:8]}...")
+    # A: the triangle nearest the middle of the visible ones; B: the one farthest from A
+    # (then also clear of the inspector's window, which opens at the picture's top right).
+    mx = sum(centroids[t][0] for t in candidates) / len(candidates)
+    my = sum(centroids[t][1] for t in candidates) / len(candidates)
+    a = min(candidates, key=lambda t: (centroids[t][0] - mx) ** 2 + (centroids[t][1] - my) ** 2)
+    click(driver, *centroids[a])
+    sel = wait_selected(driver, a, f"a click at triangle {a}'s centroid {centroids[a]} to inspect it")
+    check_selected_sane(sel, a, "click")
+    print(f"click at ({centroids[a][0]:.0f}, {centroids[a][1]:.0f}) inspects triangle {a}: "
+          f"J {sel['J']:.4f}, sigma {sel['sigma'][0]:.4f} {sel['sigma'][1]:.4f}, "
+          f"eigenvalues {[round(e, 1) for e in sel['eigenvalues']]}, clamped {sel['clamped']}")
+    settle(driver, "frames after the click")
+    box = check_outline_at(screenshot(driver), pd.page_state(driver), *centroids[a], "click")
+    print(f"  outlined in the picture at {box}")
+    compare_with_inspect(sel, invfree)
+
+    # The golden of the page with the inspector shown (paused: nothing moves; the panel's
+    # ms/step is wall-clock and is left out of the comparison with its whole panel).
+    state = pd.page_state(driver)
+    if "inspector" not in state["widgets"]:
+        fail(f"no inspector window in window.invfree.widgets: {sorted(state['widgets'])}")
+    compare_golden(screenshot(driver), "inspector.png", golden_dir, out_dir,
+                   box=(int(state["widgets"]["colours"][2]) + 30, 0, WIDTH, HEIGHT))
+
+    # B by a touch tap (the DevTools protocol's touch events, as a phone sends them).
+    state = pd.page_state(driver)
+    others = [t for t in pickable(state, centroids) if t != a]
+    b = max(others, key=lambda t: (centroids[t][0] - centroids[a][0]) ** 2 +
+            (centroids[t][1] - centroids[a][1]) ** 2)
+    touch_tap(driver, *centroids[b])
+    sel_b = wait_selected(driver, b, f"a tap at triangle {b}'s centroid {centroids[b]} to inspect it")
+    check_selected_sane(sel_b, b, "tap")
+    if sel_b["J"] == sel["J"] and sel_b["sigma"] == sel["sigma"]:
+        fail(f"triangles {a} and {b} show the same values: {sel_b}")
+    if pd.page_state(driver)["playing"]:
+        fail("a tap on a triangle started playing")
+    settle(driver, "frames after the tap")
+    box = check_outline_at(screenshot(driver), pd.page_state(driver), *centroids[b], "tap")
+    print(f"tap at ({centroids[b][0]:.0f}, {centroids[b][1]:.0f}) inspects triangle {b}: "
+          f"J {sel_b['J']:.4f}, outlined at {box}")
+
+    # Empty space: below the body, above the colour bar (where the touch test taps to play).
+    empty = (700, HEIGHT - 60)
+    if any(abs(x - empty[0]) < 30 and abs(y - empty[1]) < 30 for x, y in centroids):
+        fail(f"the empty point {empty} is near a triangle")
+    click(driver, *empty)
+    released = pd.wait_for(driver, lambda s: s["selected"] is None, "a click on empty space to release")
+    if released["playing"]:
+        fail("the click that released the triangle also started playing")
+    settle(driver, "frames after the release")
+    count, box = outline_pixels(screenshot(driver), pd.page_state(driver))
+    if count:
+        fail(f"released, but {count} outline pixels remain at {box}")
+    print(f"click on empty space at {empty}: released, still paused")
+
+    # Inspected while playing: the values follow the body, step by step.
+    click(driver, *centroids[a])
+    before = wait_selected(driver, a, f"triangle {a} again")
+    click(driver, *centre(pd.page_state(driver)["widgets"]["play"]))
+    later = pd.wait_for(driver, lambda s: s["selected"] is not None and
+                        s["selected"]["step"] >= before["step"] + 30, "30 steps inspected while playing",
+                        timeout=300)["selected"]
+    check_selected_sane(later, a, "playing")
+    if later["J"] == before["J"]:
+        fail(f"triangle {a}'s J did not change over {later['step'] - before['step']} steps")
+    print(f"playing: triangle {a}'s J {before['J']:.4f} at step {before['step']} -> "
+          f"{later['J']:.4f} at step {later['step']}")
+    check_no_console_error(driver, "picking")
+
+
 def main():
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         print(__doc__)
         return 2
-    page_dir, golden_dir, out_dir = sys.argv[1:]
+    page_dir, golden_dir, out_dir = sys.argv[1:4]
+    invfree = sys.argv[4] if len(sys.argv) == 5 else ""
     missing = pd.missing_toolchain(page_dir)
     if missing:
         print(f"SKIPPED: web page tests: {missing}")
@@ -241,7 +507,11 @@ def main():
              ("advances", lambda: test_advances(driver, server.url)),
              ("mu slider", lambda: test_mu_slider(driver, server.url)),
              ("screenshot download", lambda: test_screenshot_download(driver, server.url, out_dir)),
-             ("touch tap", lambda: test_touch_tap(driver, server.url)))
+             ("touch tap", lambda: test_touch_tap(driver, server.url)),
+             ("picking", lambda: test_picking(driver, server.url, golden_dir, out_dir, invfree)))
+    only = [n for n in os.environ.get("INVFREE_WEB_TESTS", "").split(",") if n]
+    if only:
+        tests = tuple(t for t in tests if t[0] in only)
     try:
         for name, run in tests:
             try:
