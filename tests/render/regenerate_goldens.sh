@@ -2,7 +2,9 @@
 # Regenerates the screenshot goldens (tests/render/goldens/*.png) from the current
 # renderer: builds the render tests in the release configuration and runs the golden
 # cases with INVFREE_UPDATE_GOLDENS=1, which writes each golden instead of comparing.
-# Look at every changed PNG before committing it (git diff --stat tests/render/goldens).
+# That is every RenderGolden case: det F's and the other colourings' (psi, stress,
+# clamped), the stress glyphs and the selected triangle. Look at every changed PNG before
+# committing it (git diff --stat tests/render/goldens).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 cmake --preset release >/dev/null
