@@ -1,8 +1,10 @@
 // LiveApp: one frame of the live window put together from its parts: the window and ImGui
 // (live_window.h), scripted input (input_injection.h), the keys' actions (key_bindings.h),
 // the mouse (mouse_gestures.h), the view (auto_fit_view.h), the panel (live_panel.h), the
-// picture (app/render/renderer.h), the outputs (frame_recording.h, window_capture.h), and
-// the simulation's steps, which run while the picture is drawn.
+// inspected triangle and its windows (triangle_inspection.h, inspector_panel.h,
+// landscape_window.h), the picture (app/render/renderer.h), the outputs
+// (frame_recording.h, window_capture.h), and the simulation's steps, which run while the
+// picture is drawn.
 #include "app/live/live_app.h"
 
 #include <GL/glcorearb.h>  // before GLFW's header, which would include GL/gl.h instead
@@ -321,7 +323,7 @@ void LiveAppImpl::build_ui(const Injection* inject) {
   if (req.screenshot) screenshot_requested = true;
   if (req.toggle_record) toggle_recording();
   if (req.fit_view) handle_action(Action::FitView);
-  if (req.quit) handle_action(Action::Quit);
+  if (req.quit) window.request_close();  // (Esc, Action::Quit, first releases a triangle)
   // A new scene or mesh: show it whole (even after the user chose a view).
   view.follow_scene(*controller, visible_rect());
   const render::PixelRect r = visible_rect();

@@ -1,7 +1,9 @@
 // The live classroom window: a GLFW window showing the running simulation drawn by the
 // shared renderer (app/render/renderer.h), with a Dear ImGui panel on the left to drive
 // it (app/live/live_panel.h), keyboard shortcuts (app/live/key_bindings.h), mouse pan,
-// zoom and node grabbing, screenshots and PNG-sequence recording.
+// zoom and node grabbing, a click that inspects a triangle (the Inspector window,
+// app/live/inspector_panel.h), the energy landscape's window, screenshots and PNG-sequence
+// recording.
 //
 // GL: one OpenGL 3.3 core context from GLFW (GLX). The renderer loads its functions with
 // glfwGetProcAddress; ImGui draws with its OpenGL3 backend (the packaged one loads libGL
