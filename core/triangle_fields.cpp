@@ -39,6 +39,9 @@ void triangle_field(const Simulation& sim, TriangleField field, std::vector<doub
 }
 
 std::optional<int> triangle_at(const Simulation& sim, const Vec2& point) {
+  // Every comparison with NaN is false: without this a NaN point would be "inside" the
+  // first triangle (no sign disagrees).
+  if (!point.allFinite()) return std::nullopt;
   const double* x = sim.x.data();
   for (int t = 0; t < sim.mesh.triangle_count(); ++t) {
     const auto& tri = sim.mesh.triangles[static_cast<size_t>(t)];

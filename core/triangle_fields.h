@@ -32,8 +32,10 @@ inline constexpr EnumName<TriangleField> kTriangleFieldNames[] = {
 // geometry).
 void triangle_field(const Simulation& sim, TriangleField field, std::vector<double>* out);
 
-// A triangle of the deformed mesh that contains `point` (m), the one with the smallest
-// index where folded triangles overlap; nullopt when none does.
+// A triangle of the deformed mesh that contains `point` (m; on an edge counts), the one
+// with the smallest index where triangles overlap (a fold) or share the point; either
+// orientation (an inverted triangle is clockwise); never a degenerate one. nullopt when
+// none does, or the point is not finite.
 std::optional<int> triangle_at(const Simulation& sim, const Vec2& point);
 
 // The triangle's own material (a body may have its own Lame parameters).

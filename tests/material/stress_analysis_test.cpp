@@ -451,7 +451,8 @@ TEST(TriangleAt, FindsTheTriangleUnderAPoint) {
     hi = hi.cwiseMax(node(sim, i));
   }
   for (const Vec2& p : {Vec2(hi.x() + 0.01, 0.5 * (lo.y() + hi.y())), Vec2(lo.x() - 1.0, lo.y()),
-                        Vec2(0.5 * (lo.x() + hi.x()), hi.y() + 1e-3), Vec2(100.0, -100.0)})
+                        Vec2(0.5 * (lo.x() + hi.x()), hi.y() + 1e-3), Vec2(100.0, -100.0),
+                        Vec2(std::nan(""), 0.0), Vec2(0.0, std::numeric_limits<double>::infinity())})
     EXPECT_EQ(triangle_at(sim, p), std::nullopt) << p.transpose();
   // A shared node is in every triangle around it: the smallest index is reported.
   const int shared = sim.mesh.triangles[5][1];
