@@ -79,7 +79,8 @@ void eigenvalue_bars(const StressAnalysis& a, float scale) {
     const ImVec2 p = ImGui::GetCursorScreenPos();
     ImGui::Dummy(ImVec2(bar_w, h));
     const float mid = p.x + 0.5f * bar_w;
-    const float len = largest > 0.0 ? static_cast<float>(0.5 * bar_w * std::fabs(e) / largest) : 0.0f;
+    const float len =
+        largest > 0.0 ? static_cast<float>(0.5 * bar_w * std::fabs(e) / largest) : 0.0f;
     const float x0 = negative ? mid - len : mid, x1 = negative ? mid : mid + len;
     // At least a sliver: a small negative eigenvalue beside a large one is still seen red.
     dl->AddRectFilled(ImVec2(negative ? std::min(x0, mid - 3.0f) : x0, p.y + 0.15f * h),
@@ -107,8 +108,8 @@ void inspector_contents(const Inspected& in, float scale) {
         "elasticity to inspect)");
     return;
   }
-  ImGui::Text("%s   μ %s   λ %s", render::model_display_name(a.model),
-              stress(a.lame.mu).c_str(), stress(a.lame.lambda).c_str());
+  ImGui::Text("%s   μ %s   λ %s", render::model_display_name(a.model), stress(a.lame.mu).c_str(),
+              stress(a.lame.lambda).c_str());
   values_table(a);
   if (!a.finite) {
     ImGui::TextWrapped("inverted: ψ is +∞ here, no P and no Hessian");

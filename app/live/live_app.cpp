@@ -21,8 +21,8 @@
 #include "app/live/auto_fit_view.h"
 #include "app/live/frame_rate.h"
 #include "app/live/frame_recording.h"
-#include "app/live/inspector_panel.h"
 #include "app/live/input_injection.h"
+#include "app/live/inspector_panel.h"
 #include "app/live/key_bindings.h"
 #include "app/live/landscape_window.h"
 #include "app/live/live_panel.h"
@@ -359,8 +359,7 @@ std::future<void> LiveAppImpl::draw_picture() {
   const render::FrameState state = render::capture_frame_state(
       controller->simulation(), &controller->det_f(), {panel.color_by, panel.stress_glyphs});
   part_times.capture_ms += thread_cpu_ms() - capture_start;
-  if (panel.color_by != field_range_of ||
-      controller->mesh_generation() != field_range_generation) {
+  if (panel.color_by != field_range_of || controller->mesh_generation() != field_range_generation) {
     color_range.field_seen = false;
     field_range_of = panel.color_by;
     field_range_generation = controller->mesh_generation();

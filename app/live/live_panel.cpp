@@ -515,8 +515,8 @@ void color_by_row(PanelState& ps) {
   ImGui::Checkbox("landscape", &ps.show_landscape);
   remember(ps, "landscape");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("the energy landscape: ψ over the singular values (σ₁, σ₂), every "
-                      "triangle a dot");
+    ImGui::SetTooltip(
+        "the energy landscape: ψ over the singular values (σ₁, σ₂), every triangle a dot");
 }
 
 // The view: UI scale, where the det F panel goes, the det F colour scale, the colouring.

@@ -302,10 +302,9 @@ TEST(LiveInspector, ShowsWhatInspectReports) {
   ASSERT_NE(in, nullptr);
   ASSERT_EQ(in->triangle, t);
   ASSERT_EQ(in->step, 120);
-  const test::CommandResult r =
-      test::run_command(::invfree::test::exe_path(),
-                        "inspect --scene compress --step 120 --json --triangle " + std::to_string(t),
-                        true);
+  const test::CommandResult r = test::run_command(
+      ::invfree::test::exe_path(),
+      "inspect --scene compress --step 120 --json --triangle " + std::to_string(t), true);
   ASSERT_EQ(r.code, 0) << r.err;
   const StressAnalysis& a = in->analysis;
   EXPECT_EQ(numbers_of(r.out, "triangle"), std::vector<double>{double(t)});

@@ -2,10 +2,11 @@
 // core's analysis of the current state (updated as the body moves), an index off the mesh
 // is not selected, and a mesh rebuild (another scene, n_seg) releases the selection while
 // a reset keeps it.
+#include "app/live/triangle_inspection.h"
+
 #include <gtest/gtest.h>
 
 #include "app/live/live_controller.h"
-#include "app/live/triangle_inspection.h"
 #include "scene_io/builtin_scenes.h"
 #include "triangle_fields.h"
 
