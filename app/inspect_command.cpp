@@ -112,9 +112,9 @@ void print_json(const Report& r) {
   const auto stress = [s](const std::string& value) { return s ? value : std::string("null"); };
   const double sigma[2] = {a.svd.sigma(0), a.svd.sigma(1)};
   const Vec2 d0 = a.principal_directions.col(0), d1 = a.principal_directions.col(1);
-  const std::string principal =
-      "{\"values\": " + json_vec(a.principal_stress.data(), 2) + ", \"directions\": [" +
-      json_vec(d0.data(), 2) + ", " + json_vec(d1.data(), 2) + "]}";
+  const std::string principal = "{\"values\": " + json_vec(a.principal_stress.data(), 2) +
+                                ", \"directions\": [" + json_vec(d0.data(), 2) + ", " +
+                                json_vec(d1.data(), 2) + "]}";
   std::string o = "{\n";
   const auto key = [&o](const char* name, const std::string& value, bool last = false) {
     o += std::string("  \"") + name + "\": " + value + (last ? "\n" : ",\n");
@@ -196,13 +196,15 @@ void print_table(const Report& r) {
   matrix_rows("P", a.P, "Pa", "first Piola-Kirchhoff stress dPsi/dF");
   matrix_rows("cauchy", a.cauchy, "Pa", "Cauchy stress P F^T / J");
   for (int k = 0; k < 2; ++k)
-    row(k == 0 ? "principal_stress" : "", cell(a.principal_stress(k)) + " Pa along (" +
-                                              num(a.principal_directions(0, k)) + ", " +
-                                              num(a.principal_directions(1, k)) + ")",
+    row(k == 0 ? "principal_stress" : "",
+        cell(a.principal_stress(k)) + " Pa along (" + num(a.principal_directions(0, k)) + ", " +
+            num(a.principal_directions(1, k)) + ")",
         k == 0 ? "tension > 0" : "");
   for (int k = 0; k < 4; ++k) {
     const bool clamped = a.eigenvalues(k) < 0.0;
-    row(k == 0 ? "eigenvalues" : k == 1 ? "  of dP/dF" : "",
+    row(k == 0   ? "eigenvalues"
+        : k == 1 ? "  of dP/dF"
+                 : "",
         std::string(kEigenvalueNames[static_cast<size_t>(k)]) +
             std::string(8 - std::string(kEigenvalueNames[static_cast<size_t>(k)]).size(), ' ') +
             cell(a.eigenvalues(k)) + " Pa",
@@ -234,10 +236,9 @@ int run_inspect(const InspectOptions& opt) {
   Simulation sim = make_simulation(*scene);
   const int count = sim.mesh.triangle_count();
   if (by_triangle && (opt.triangle < 0 || opt.triangle >= count))
-    return fail(exit_code::kBadInput, "--triangle " + std::to_string(opt.triangle) +
-                                          " is out of range: the mesh has " +
-                                          std::to_string(count) + " triangles (0 to " +
-                                          std::to_string(count - 1) + ")");
+    return fail(exit_code::kBadInput,
+                "--triangle " + std::to_string(opt.triangle) + " is out of range: the mesh has " +
+                    std::to_string(count) + " triangles (0 to " + std::to_string(count - 1) + ")");
 
   // The same stepping as `simulate`, and nothing else per step.
   while (sim.step_count < opt.step) {
@@ -248,10 +249,10 @@ int run_inspect(const InspectOptions& opt) {
     if (r.status != StepStatus::Ok) {
       char t[32];
       std::snprintf(t, sizeof t, "%.4g", sim.time + sim.scene.h);
-      return fail(exit_code::kRunFailed,
-                  "step " + std::to_string(sim.step_count + 1) + " failed: " +
-                      step_status_name(r.status) + ": " + r.message + " (t = " + t +
-                      " s); step " + std::to_string(opt.step) + " cannot be inspected");
+      return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) +
+                                             " failed: " + step_status_name(r.status) + ": " +
+                                             r.message + " (t = " + t + " s); step " +
+                                             std::to_string(opt.step) + " cannot be inspected");
     }
   }
 
@@ -276,8 +277,7 @@ int run_inspect(const InspectOptions& opt) {
     r.fd = finite_difference_errors(r.a.model, r.a.F, r.a.lame);
   } else {
     // Geometry only: analyze_stress's F, polar SVD and J (its stress numbers are not shown).
-    r.a = analyze_stress(sim.scene.model, triangle_deformation_gradient(sim, r.triangle),
-                         Lame{});
+    r.a = analyze_stress(sim.scene.model, triangle_deformation_gradient(sim, r.triangle), Lame{});
   }
   if (opt.json)
     print_json(r);
@@ -296,8 +296,9 @@ void register_inspect_command(CLI::App& app, int& exit_code) {
       "eigenvalues of dP/dF (the lecture's quantities)",
       run_inspect);
   opt.scene.add_to(cmd);
-  cmd->add_option("--step", opt.step, "the step to inspect: the state after N steps (0 to "
-                                      "100000000; 0: the initial state)")
+  cmd->add_option("--step", opt.step,
+                  "the step to inspect: the state after N steps (0 to "
+                  "100000000; 0: the initial state)")
       ->required()
       ->type_name("N")
       ->check(step_number());

@@ -45,15 +45,16 @@ std::string extension_of(const std::string& path) {
   const size_t dot = path.find_last_of('.');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
   std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return std::tolower(ch); });
   return ext;
 }
 
 std::string step_failure_message(const Simulation& sim, const StepReport& failure) {
   char t[32];
   std::snprintf(t, sizeof t, "%.4g", sim.time + sim.scene.h);
-  return "step " + std::to_string(sim.step_count + 1) + " failed: " +
-         step_status_name(failure.status) + ": " + failure.message + " (t = " + t +
+  return "step " + std::to_string(sim.step_count + 1) +
+         " failed: " + step_status_name(failure.status) + ": " + failure.message + " (t = " + t +
          " s); no landscape written";
 }
 
@@ -74,7 +75,8 @@ int run_landscape(const LandscapeOptions& opt) {
                 "--mu and --lambda are for a landscape without a scene; with --scene use --set "
                 "material.mu=... --set material.lambda=...");
   if (!with_scene && opt.model_opt->count() == 0)
-    return fail(exit_code::kBadInput, "--model is required without --scene (" + model_choices() + ")");
+    return fail(exit_code::kBadInput,
+                "--model is required without --scene (" + model_choices() + ")");
 
   // The models drawn.
   std::vector<Model> models;
@@ -98,8 +100,8 @@ int run_landscape(const LandscapeOptions& opt) {
       return fail(exit_code::kBadInput, "unknown --format " + opt.format + " (png, svg or pdf)");
     if (ext_format != format)
       return fail(exit_code::kBadInput, "--out " + opt.out + " does not end in ." +
-                                            chart_extension(*format) + " (--format " +
-                                            opt.format + ")");
+                                            chart_extension(*format) + " (--format " + opt.format +
+                                            ")");
   } else {
     format = ext_format;
     if (!format)
@@ -124,8 +126,10 @@ int run_landscape(const LandscapeOptions& opt) {
   }
   spec.models = models;
 
-  const std::vector<std::string> inputs = with_scene ? opt.scene.input_files() : std::vector<std::string>{};
-  if (auto e = check_output_files({opt.out}, inputs, opt.force)) return fail(e.exit_code, e.message);
+  const std::vector<std::string> inputs =
+      with_scene ? opt.scene.input_files() : std::vector<std::string>{};
+  if (auto e = check_output_files({opt.out}, inputs, opt.force))
+    return fail(e.exit_code, e.message);
 
   if (scene) {
     Simulation sim = make_simulation(*scene);
@@ -134,7 +138,8 @@ int run_landscape(const LandscapeOptions& opt) {
         return fail(interrupted_exit_code(),
                     "interrupted at step " + std::to_string(sim.step_count) + "; nothing written");
       const StepReport r = step(sim);
-      if (r.status != StepStatus::Ok) return fail(exit_code::kRunFailed, step_failure_message(sim, r));
+      if (r.status != StepStatus::Ok)
+        return fail(exit_code::kRunFailed, step_failure_message(sim, r));
     }
     triangle_sigmas(sim, &spec.points);
     char t[32];
@@ -151,9 +156,10 @@ int run_landscape(const LandscapeOptions& opt) {
           "The scene's bodies have their own Lam\u00e9 parameters: the landscape is drawn with "
           "the scene's [material]; a dot of another body sits on its own landscape, scaled.");
     const LandscapeDomain d = chart_domain(spec);
-    const long outside = std::count_if(spec.points.begin(), spec.points.end(), [&](const SigmaPair& p) {
-      return !(p.s1 >= d.s1_min && p.s1 <= d.s1_max && p.s2 >= d.s2_min && p.s2 <= d.s2_max);
-    });
+    const long outside =
+        std::count_if(spec.points.begin(), spec.points.end(), [&](const SigmaPair& p) {
+          return !(p.s1 >= d.s1_min && p.s1 <= d.s1_max && p.s2 >= d.s2_min && p.s2 <= d.s2_max);
+        });
     if (outside > 0)
       spec.notes.push_back(format_for_people(double(outside)) +
                            " triangles lie beyond the drawn domain (a stretch past 2): "
@@ -165,11 +171,10 @@ int run_landscape(const LandscapeOptions& opt) {
   std::string what = models.size() == 1 ? model_label(models[0]) : "4 models";
   std::printf("landscape: %s, mu = %s, lambda = %s%s; wrote %s\n", what.c_str(),
               format_pascal(spec.lame.mu).c_str(), format_pascal(spec.lame.lambda).c_str(),
-              spec.points.empty()
-                  ? ""
-                  : ("; " + format_for_people(double(spec.points.size())) + " triangles at step " +
-                     std::to_string(opt.step))
-                        .c_str(),
+              spec.points.empty() ? ""
+                                  : ("; " + format_for_people(double(spec.points.size())) +
+                                     " triangles at step " + std::to_string(opt.step))
+                                        .c_str(),
               opt.out.c_str());
   flush_standard_output();
   return exit_code::kOk;
@@ -189,14 +194,17 @@ void register_landscape_command(CLI::App& app, int& exit_code) {
                       ->type_name("MODEL");
   opt.scene.add_to(cmd, "a scene whose triangles are drawn as dots: built-in scene",
                    "override a scene value");
-  opt.scene_opt = cmd->get_option("--scene");
+  // No scene unless one is given: the help shows no default.
+  opt.scene_opt = cmd->get_option("--scene")->default_str("");
   opt.set_opt = cmd->get_option("--set");
-  opt.step_opt = cmd->add_option("--step", opt.step,
-                                 "the scene's triangles after this many steps (0: the initial state)")
-                     ->capture_default_str()
-                     ->check(CLI::Range(0, 100000000));
-  opt.mu_opt = cmd->add_option("--mu", opt.mu, "Lame mu in Pa without --scene (default: E = 1e5, nu = 0.4)")
-                   ->check(finite_range(0.0, 1e15));
+  opt.step_opt =
+      cmd->add_option("--step", opt.step,
+                      "the scene's triangles after this many steps (0: the initial state)")
+          ->capture_default_str()
+          ->check(CLI::Range(0, 100000000));
+  opt.mu_opt =
+      cmd->add_option("--mu", opt.mu, "Lame mu in Pa without --scene (default: E = 1e5, nu = 0.4)")
+          ->check(finite_range(0.0, 1e15));
   opt.lambda_opt = cmd->add_option("--lambda", opt.lambda, "Lame lambda in Pa without --scene")
                        ->check(finite_range(0.0, 1e15));
   cmd->add_option("--out", opt.out, "the chart: FILE.png, FILE.svg or FILE.pdf")

@@ -18,7 +18,9 @@ LandscapeDomain landscape_domain(Model model) {
   return d;
 }
 
-LandscapeDomain common_landscape_domain() { return LandscapeDomain{}; }
+LandscapeDomain common_landscape_domain() {
+  return LandscapeDomain{};
+}
 
 namespace {
 
@@ -59,7 +61,8 @@ void build_landscape_grid(Model model, const Lame& lame, const LandscapeDomain& 
     for (int j = 0; j < grid->n2; ++j) {
       const double s2 = grid->s2(j);
       double* row = grid->psi.data() + static_cast<size_t>(grid->n1) * j;
-      for (int i = 0; i < grid->n1; ++i) row[i] = M::energy_density(diagonal(grid->s1(i), s2), lame);
+      for (int i = 0; i < grid->n1; ++i)
+        row[i] = M::energy_density(diagonal(grid->s1(i), s2), lame);
     }
   });
 }
@@ -98,11 +101,10 @@ std::vector<double> landscape_contour_levels(const LandscapeScale& scale) {
 
 Rgb landscape_scale_color(double t) {
   // ColorBrewer YlOrRd, 9 classes.
-  static constexpr Rgb stops[] = {{1.000f, 1.000f, 0.800f}, {1.000f, 0.929f, 0.627f},
-                                  {0.996f, 0.851f, 0.463f}, {0.996f, 0.698f, 0.298f},
-                                  {0.992f, 0.553f, 0.235f}, {0.988f, 0.306f, 0.165f},
-                                  {0.890f, 0.102f, 0.110f}, {0.741f, 0.000f, 0.149f},
-                                  {0.502f, 0.000f, 0.149f}};
+  static constexpr Rgb stops[] = {
+      {1.000f, 1.000f, 0.800f}, {1.000f, 0.929f, 0.627f}, {0.996f, 0.851f, 0.463f},
+      {0.996f, 0.698f, 0.298f}, {0.992f, 0.553f, 0.235f}, {0.988f, 0.306f, 0.165f},
+      {0.890f, 0.102f, 0.110f}, {0.741f, 0.000f, 0.149f}, {0.502f, 0.000f, 0.149f}};
   constexpr int last = static_cast<int>(std::size(stops)) - 1;
   const double u = std::clamp(t, 0.0, 1.0) * last;
   const int i = std::min(static_cast<int>(u), last - 1);
@@ -199,7 +201,8 @@ void landscape_contours(const LandscapeGrid& grid, std::span<const double> level
     segs.clear();
     for (int j = 0; j + 1 < n2; ++j)
       for (int i = 0; i + 1 < n1; ++i) {
-        // Corners counter-clockwise from the bottom left: a (i,j), b (i+1,j), c (i+1,j+1), d (i,j+1).
+        // Corners counter-clockwise from the bottom left: a (i,j), b (i+1,j), c (i+1,j+1), d
+        // (i,j+1).
         const double a = grid.at(i, j), b = grid.at(i + 1, j), c = grid.at(i + 1, j + 1),
                      d = grid.at(i, j + 1);
         if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(d)))
@@ -211,10 +214,14 @@ void landscape_contours(const LandscapeGrid& grid, std::span<const double> level
         // Cell edges 0 bottom (a-b), 1 right (b-c), 2 top (d-c), 3 left (a-d).
         auto edge_point = [&](int e) -> std::pair<long, SigmaPair> {
           switch (e) {
-            case 0: return {h_edge(i, j), {x0 + lerp(a, b) * (x1 - x0), y0}};
-            case 1: return {v_edge(i + 1, j), {x1, y0 + lerp(b, c) * (y1 - y0)}};
-            case 2: return {h_edge(i, j + 1), {x0 + lerp(d, c) * (x1 - x0), y1}};
-            default: return {v_edge(i, j), {x0, y0 + lerp(a, d) * (y1 - y0)}};
+            case 0:
+              return {h_edge(i, j), {x0 + lerp(a, b) * (x1 - x0), y0}};
+            case 1:
+              return {v_edge(i + 1, j), {x1, y0 + lerp(b, c) * (y1 - y0)}};
+            case 2:
+              return {h_edge(i, j + 1), {x0 + lerp(d, c) * (x1 - x0), y1}};
+            default:
+              return {v_edge(i, j), {x0, y0 + lerp(a, d) * (y1 - y0)}};
           }
         };
         auto add = [&](int e0, int e1) {
@@ -223,19 +230,50 @@ void landscape_contours(const LandscapeGrid& grid, std::span<const double> level
         };
         const bool centre_above = 0.25 * (a + b + c + d) >= level;
         switch (code) {
-          case 1: case 14: add(3, 0); break;
-          case 2: case 13: add(0, 1); break;
-          case 3: case 12: add(3, 1); break;
-          case 4: case 11: add(1, 2); break;
-          case 6: case 9: add(0, 2); break;
-          case 7: case 8: add(3, 2); break;
+          case 1:
+          case 14:
+            add(3, 0);
+            break;
+          case 2:
+          case 13:
+            add(0, 1);
+            break;
+          case 3:
+          case 12:
+            add(3, 1);
+            break;
+          case 4:
+          case 11:
+            add(1, 2);
+            break;
+          case 6:
+          case 9:
+            add(0, 2);
+            break;
+          case 7:
+          case 8:
+            add(3, 2);
+            break;
           case 5:  // a and c above
-            if (centre_above) { add(0, 1); add(2, 3); } else { add(3, 0); add(1, 2); }
+            if (centre_above) {
+              add(0, 1);
+              add(2, 3);
+            } else {
+              add(3, 0);
+              add(1, 2);
+            }
             break;
           case 10:  // b and d above
-            if (centre_above) { add(3, 0); add(1, 2); } else { add(0, 1); add(2, 3); }
+            if (centre_above) {
+              add(3, 0);
+              add(1, 2);
+            } else {
+              add(0, 1);
+              add(2, 3);
+            }
             break;
-          default: break;
+          default:
+            break;
         }
       }
     chain_segments(segs, level, out);

@@ -38,9 +38,9 @@ struct Layout {
   int cells_per_unit = 0;
   double ppu = 0;  // points per unit of sigma
   double plot_w = 0, plot_h = 0;
-  double top = 0;     // the plots' top edge
-  double bar_x = 0;   // the colour bar's left edge
-  double width = 0;   // the drawing's
+  double top = 0;    // the plots' top edge
+  double bar_x = 0;  // the colour bar's left edge
+  double width = 0;  // the drawing's
   double legend_top = 0, notes_top = 0, height = 0;
   std::vector<std::string> title_lines, caption_lines;
   std::vector<std::vector<std::string>> notes;
@@ -78,7 +78,8 @@ std::vector<std::string> standard_notes(const LandscapeChartSpec& spec) {
   notes.push_back(
       "\u03a8(\u03c3\u2081, \u03c3\u2082) is the energy density at F = diag(\u03c3\u2081, "
       "\u03c3\u2082), on one logarithmic colour scale for every panel (three decades; a "
-      "darker step is more energy); the contours are at 1 and 3 \u00d7 10\u207f Pa. The polar SVD orders \u03c3\u2081 \u2265 |\u03c3\u2082|, with "
+      "darker step is more energy); the contours are at 1 and 3 \u00d7 10\u207f Pa. The polar SVD "
+      "orders \u03c3\u2081 \u2265 |\u03c3\u2082|, with "
       "\u03c3\u2082 < 0 for an inverted triangle, so the dots stay between the diagonals "
       "\u03c3\u2082 = \u00b1\u03c3\u2081; a rotation-invariant model's landscape is mirrored "
       "across them.");
@@ -115,9 +116,9 @@ std::vector<LegendItem> legend_items(const LandscapeChartSpec& spec) {
                      "\u03c3\u2081\u03c3\u2082 = 0: neo-Hookean's wall, \u03a8 = +\u221e on "
                      "and beyond it (hatched)"});
   if (any_invertible_model(spec))
-    items.push_back(
-        {LegendItem::Dashed, "\u03c3\u2082 = 0 (det F = 0) where \u03a8 stays finite"});
-  items.push_back({LegendItem::Rest, "rest: \u03c3\u2081 = \u03c3\u2082 = 1 (F a rotation), \u03a8 = 0"});
+    items.push_back({LegendItem::Dashed, "\u03c3\u2082 = 0 (det F = 0) where \u03a8 stays finite"});
+  items.push_back(
+      {LegendItem::Rest, "rest: \u03c3\u2081 = \u03c3\u2082 = 1 (F a rotation), \u03a8 = 0"});
   return items;
 }
 
@@ -128,7 +129,8 @@ Layout layout(const LandscapeChartSpec& spec) {
   l.domain = chart_domain(spec);
   const double h_units = l.domain.s2_max - l.domain.s2_min;
   const double w_units = l.domain.s1_max - l.domain.s1_min;
-  l.cells_per_unit = std::max(1, static_cast<int>(std::floor(spec.plot_height / kCellPx / h_units)));
+  l.cells_per_unit =
+      std::max(1, static_cast<int>(std::floor(spec.plot_height / kCellPx / h_units)));
   l.ppu = l.cells_per_unit * kCellPx;
   l.plot_w = w_units * l.ppu;
   l.plot_h = h_units * l.ppu;
@@ -139,7 +141,8 @@ Layout layout(const LandscapeChartSpec& spec) {
       "Energy density \u03a8(\u03c3\u2081, \u03c3\u2082) of " +
       (spec.models.size() == 1 ? std::string(model_label(spec.models[0]))
                                : std::to_string(spec.models.size()) + " models") +
-      ":  \u03bc = " + format_pascal(spec.lame.mu) + ",  \u03bb = " + format_pascal(spec.lame.lambda);
+      ":  \u03bc = " + format_pascal(spec.lame.mu) +
+      ",  \u03bb = " + format_pascal(spec.lame.lambda);
   l.title_lines = wrap_text(title, kTitleSize, l.width - 2 * 16.0);
   double y = 12.0 + l.title_lines.size() * kTitleSize * 1.3;
   if (!spec.points_caption.empty())
@@ -187,8 +190,8 @@ void heat_map(Canvas& c, const PanelMap& m, const Layout& l, Model model, const 
   for (int r = 0; r < rows; ++r) {
     const double s2 = l.domain.s2_max - (r + 0.5) * cell;
     for (int k = 0; k < cols; ++k) {
-      const double t =
-          landscape_scale_position(scale, landscape_psi(model, lame, l.domain.s1_min + (k + 0.5) * cell, s2));
+      const double t = landscape_scale_position(
+          scale, landscape_psi(model, lame, l.domain.s1_min + (k + 0.5) * cell, s2));
       q[static_cast<size_t>(k)] = std::isnan(t) ? -1 : static_cast<int>(std::lround(t * steps));
     }
     const double y0 = m.y0 + r * cell_px;
@@ -217,7 +220,8 @@ void contour_labels(Canvas& c, const PanelMap& m, const std::vector<ContourLine>
                     const std::vector<double>& levels, std::vector<Box> taken) {
   static constexpr double kAngles[] = {45.0, 25.0, 65.0, -20.0, 110.0, 150.0, -60.0};
   const double rest_x = m.x(1.0), rest_y = m.y(1.0);
-  const Box plot{m.x(m.d.s1_min) + 2, m.y(m.d.s2_max) + 2, m.x(m.d.s1_max) - 2, m.y(m.d.s2_min) - 2};
+  const Box plot{m.x(m.d.s1_min) + 2, m.y(m.d.s2_max) + 2, m.x(m.d.s1_max) - 2,
+                 m.y(m.d.s2_min) - 2};
   for (double level : levels) {
     const std::string text = format_pascal(level);
     const double w = text_width(text, 10.0) + 6.0, h = 14.0;
@@ -334,7 +338,8 @@ void panel(Canvas& c, const Layout& l, size_t index, Model model, const Landscap
     const bool inside = inside_domain(d, p);
     const double px = m.x(std::clamp(p.s1, d.s1_min, d.s1_max));
     const double py = m.y(std::clamp(p.s2, d.s2_min, d.s2_max));
-    const int bx = static_cast<int>((px - X0) / bin) + 1, by = static_cast<int>((py - Y0) / bin) + 1;
+    const int bx = static_cast<int>((px - X0) / bin) + 1,
+              by = static_cast<int>((py - Y0) / bin) + 1;
     char& s = seen[static_cast<size_t>(bx + bw * by)];
     if (s) continue;
     s = 1;

@@ -10,7 +10,9 @@ namespace invfree {
 namespace {
 
 ImU32 to_u32(Rgb c, float alpha = 1.0f) {
-  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  auto byte = [](float v) {
+    return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+  };
   return IM_COL32(byte(c.r), byte(c.g), byte(c.b), byte(alpha));
 }
 
@@ -40,8 +42,8 @@ struct Plot {
 
 // The grid as one mesh: a vertex per node with its colour (Gouraud between them), two
 // triangles per cell; every `stride`-th node when the draw list has little room left.
-void heat_map(ImDrawList* dl, const Plot& p, const LandscapeCache& lc, const std::vector<ImU32>& colors,
-              long room) {
+void heat_map(ImDrawList* dl, const Plot& p, const LandscapeCache& lc,
+              const std::vector<ImU32>& colors, long room) {
   const LandscapeGrid& g = lc.grid;
   int stride = 1;
   auto nodes = [&](int s) { return long((g.n1 - 1) / s + 1) * long((g.n2 - 1) / s + 1); };
@@ -54,7 +56,8 @@ void heat_map(ImDrawList* dl, const Plot& p, const LandscapeCache& lc, const std
   for (int b = 0; b < m2; ++b)
     for (int a = 0; a < m1; ++a) {
       const int i = a * stride, j = b * stride;
-      dl->PrimWriteVtx(ImVec2(p.x(g.s1(i)), p.y(g.s2(j))), uv, colors[static_cast<size_t>(i + g.n1 * j)]);
+      dl->PrimWriteVtx(ImVec2(p.x(g.s1(i)), p.y(g.s2(j))), uv,
+                       colors[static_cast<size_t>(i + g.n1 * j)]);
     }
   for (int b = 0; b + 1 < m2; ++b)
     for (int a = 0; a + 1 < m1; ++a) {
@@ -103,7 +106,8 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   // Layout: the title line (the unit in it), the plot (square cells) with the s2 ticks on its
   // left and the s1 ticks under it, and the colour bar either on the right (a wide panel) or
   // under the plot (a narrow one, as the live window's): whichever gives the larger plot.
-  std::string title = std::string("\u03a8(\u03c3\u2081, \u03c3\u2082) in Pa: ") + model_label(model);
+  std::string title =
+      std::string("\u03a8(\u03c3\u2081, \u03c3\u2082) in Pa: ") + model_label(model);
   if (ImGui::CalcTextSize(title.c_str()).x > size.x)  // "stable neo-Hookean" in a narrow window
     title = std::string("\u03a8 in Pa: ") + model_label(model);
   const float bar_w = 9.0f, bar_label = ImGui::CalcTextSize("100k").x;
@@ -144,14 +148,16 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
     const char* inf = "\u03a8 = +\u221e (det F \u2264 0)";
     const ImVec2 ts = ImGui::CalcTextSize(inf);
     if (Y1 - wy > ts.y + 6.0f && X1 - X0 > ts.x + 8.0f)
-      dl->AddText(ImVec2(0.5f * (X0 + X1 - ts.x), 0.5f * (wy + Y1 - ts.y)), IM_COL32(255, 255, 255, 255), inf);
+      dl->AddText(ImVec2(0.5f * (X0 + X1 - ts.x), 0.5f * (wy + Y1 - ts.y)),
+                  IM_COL32(255, 255, 255, 255), inf);
   }
   // Contours.
   for (const ContourLine& c : lc.contours) {
     cache.scratch.resize(c.points.size());
     for (size_t k = 0; k < c.points.size(); ++k)
       cache.scratch[k] = ImVec2(p.x(c.points[k].s1), p.y(c.points[k].s2));
-    dl->AddPolyline(cache.scratch.data(), static_cast<int>(cache.scratch.size()), kContour, 0, 1.0f);
+    dl->AddPolyline(cache.scratch.data(), static_cast<int>(cache.scratch.size()), kContour, 0,
+                    1.0f);
   }
   // s1 s2 = 0: the wall (neo-Hookean), or the dashed det F = 0 the others cross.
   if (domain.s2_min < 0.0) {
@@ -160,7 +166,9 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
     else
       dashed_line(dl, ImVec2(X0, p.y(0.0)), ImVec2(X1, p.y(0.0)), kInk, 1.5f);
   }
-  if (barrier) dl->AddLine(ImVec2(X0 + 1.5f, Y0), ImVec2(X0 + 1.5f, p.y(std::max(0.0, domain.s2_min))), kInk, 3.0f);
+  if (barrier)
+    dl->AddLine(ImVec2(X0 + 1.5f, Y0), ImVec2(X0 + 1.5f, p.y(std::max(0.0, domain.s2_min))), kInk,
+                3.0f);
   dl->AddCircle(ImVec2(p.x(1.0), p.y(1.0)), 4.5f, kInk, 12, 1.6f);
 
   // The triangles: one dot per 3-pixel bin (more would cover each other), a white-edged
@@ -174,8 +182,8 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   // A triangle beyond the domain (a stretch past 2) is pinned to its edge, pale.
   for (const SigmaPair& s : points) {
     if (drawn >= dots_room) break;
-    const bool inside = s.s1 >= domain.s1_min && s.s1 <= domain.s1_max &&
-                        s.s2 >= domain.s2_min && s.s2 <= domain.s2_max;
+    const bool inside = s.s1 >= domain.s1_min && s.s1 <= domain.s1_max && s.s2 >= domain.s2_min &&
+                        s.s2 <= domain.s2_max;
     const float x = p.x(std::clamp(s.s1, domain.s1_min, domain.s1_max));
     const float y = p.y(std::clamp(s.s2, domain.s2_min, domain.s2_max));
     const int bx = std::clamp(static_cast<int>((x - X0) / bin), 0, bw - 1);
@@ -183,8 +191,10 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
     std::uint8_t& o = cache.occupied[static_cast<size_t>(bx + bw * by)];
     if (o) continue;
     o = 1;
-    dl->AddRectFilled(ImVec2(x - 2.5f, y - 2.5f), ImVec2(x + 2.5f, y + 2.5f), inside ? kDotEdge : kDotFill);
-    dl->AddRectFilled(ImVec2(x - 1.6f, y - 1.6f), ImVec2(x + 1.6f, y + 1.6f), inside ? kDotFill : kDotPinned);
+    dl->AddRectFilled(ImVec2(x - 2.5f, y - 2.5f), ImVec2(x + 2.5f, y + 2.5f),
+                      inside ? kDotEdge : kDotFill);
+    dl->AddRectFilled(ImVec2(x - 1.6f, y - 1.6f), ImVec2(x + 1.6f, y + 1.6f),
+                      inside ? kDotFill : kDotPinned);
     ++drawn;
   }
   cache.dots_drawn = drawn;
@@ -230,14 +240,18 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
   const float by0 = bar_below ? Y1 + x_ticks + 6.0f : Y0, by1 = bar_below ? by0 + bar_w : Y1;
   // Position t on the bar: along x from the left (below), along y from the bottom (side).
   const auto at = [&](double t) {
-    return bar_below ? bx0 + static_cast<float>(t) * (bx1 - bx0) : by1 - static_cast<float>(t) * (by1 - by0);
+    return bar_below ? bx0 + static_cast<float>(t) * (bx1 - bx0)
+                     : by1 - static_cast<float>(t) * (by1 - by0);
   };
   for (int k = 0; k < 8; ++k) {
-    const ImU32 c0 = to_u32(landscape_scale_color(k / 8.0)), c1 = to_u32(landscape_scale_color((k + 1) / 8.0));
+    const ImU32 c0 = to_u32(landscape_scale_color(k / 8.0)),
+                c1 = to_u32(landscape_scale_color((k + 1) / 8.0));
     if (bar_below)
-      dl->AddRectFilledMultiColor(ImVec2(at(k / 8.0), by0), ImVec2(at((k + 1) / 8.0) + 0.5f, by1), c0, c1, c1, c0);
+      dl->AddRectFilledMultiColor(ImVec2(at(k / 8.0), by0), ImVec2(at((k + 1) / 8.0) + 0.5f, by1),
+                                  c0, c1, c1, c0);
     else
-      dl->AddRectFilledMultiColor(ImVec2(bx0, at((k + 1) / 8.0)), ImVec2(bx1, at(k / 8.0) + 0.5f), c1, c1, c0, c0);
+      dl->AddRectFilledMultiColor(ImVec2(bx0, at((k + 1) / 8.0)), ImVec2(bx1, at(k / 8.0) + 0.5f),
+                                  c1, c1, c0, c0);
   }
   dl->AddRect(ImVec2(bx0, by0), ImVec2(bx1, by1), text);
   for (double level : lc.levels) {
@@ -267,7 +281,8 @@ void draw_landscape_panel(Model model, const Lame& lame, std::span<const SigmaPa
     if (m.x >= X0 && m.x <= X1 && m.y >= Y0 && m.y <= Y1) {
       const double s1 = domain.s1_min + (m.x - X0) / p.ppu, s2 = domain.s2_max - (m.y - Y0) / p.ppu;
       const std::string psi = format_pascal(landscape_psi(model, lame, s1, s2));
-      ImGui::SetTooltip("\u03c3\u2081 = %.3f   \u03c3\u2082 = %.3f\n\u03a8 = %s", s1, s2, psi.c_str());
+      ImGui::SetTooltip("\u03c3\u2081 = %.3f   \u03c3\u2082 = %.3f\n\u03a8 = %s", s1, s2,
+                        psi.c_str());
     }
   }
 }

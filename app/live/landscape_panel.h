@@ -18,10 +18,10 @@
 //
 // It draws at the cursor within `size`, the colour bar beside the plot or under it (whichever
 // leaves the larger plot), takes the height it used (an invisible button: a click on it does
-// not reach the window behind), and shows a tooltip with (s1, s2) and Psi under the mouse. The grid and
-// the contours are rebuilt only when the model or the Lame parameters change (the cache);
-// per frame it computes each triangle's (s1, s2) and writes the vertices.
-// Cost (tests/bench/landscape_bench.cpp, docs/landscape.md): well under the 2 ms.
+// not reach the window behind), and shows a tooltip with (s1, s2) and Psi under the mouse. The grid
+// and the contours are rebuilt only when the model or the Lame parameters change (the cache); per
+// frame it computes each triangle's (s1, s2) and writes the vertices. Cost
+// (tests/bench/landscape_bench.cpp, docs/landscape.md): well under the 2 ms.
 #pragma once
 
 #include <imgui.h>
@@ -35,12 +35,12 @@
 namespace invfree {
 
 struct LandscapePanelCache {
-  LandscapeCache landscape;              // grid, scale, contours
-  std::vector<ImU32> node_colors;        // the grid nodes' colours (rebuilt with the grid)
-  std::vector<SigmaPair> sigma;          // this frame's triangles (the Simulation overload)
-  std::vector<std::uint8_t> occupied;    // dot de-duplication: one dot per few pixels
-  std::vector<ImVec2> scratch;           // a contour line in pixels
-  int dots_drawn = 0;                    // the last frame's (tests, the benchmark)
+  LandscapeCache landscape;            // grid, scale, contours
+  std::vector<ImU32> node_colors;      // the grid nodes' colours (rebuilt with the grid)
+  std::vector<SigmaPair> sigma;        // this frame's triangles (the Simulation overload)
+  std::vector<std::uint8_t> occupied;  // dot de-duplication: one dot per few pixels
+  std::vector<ImVec2> scratch;         // a contour line in pixels
+  int dots_drawn = 0;                  // the last frame's (tests, the benchmark)
 };
 
 // Grid nodes per unit of sigma in the panel: every 1/32 (a node every few pixels at the

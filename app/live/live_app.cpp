@@ -90,7 +90,7 @@ struct LiveAppImpl {
   // again (det F's range is kept, as before).
   TriangleField field_range_of = TriangleField::DetF;
   long field_range_generation = 0;
-  int busy_frames = kBusyFrames;          // frames left to draw before idling
+  int busy_frames = kBusyFrames;  // frames left to draw before idling
 
   ~LiveAppImpl() {
     window.activate();

@@ -60,7 +60,7 @@ struct LiveOptions {
   bool stress_glyphs = false;
   bool show_landscape = false;  // the energy landscape's window
   int select_triangle = -1;     // >= 0: inspect this triangle from the start
-  bool vsync = true;  // off for --frames and --bench
+  bool vsync = true;            // off for --frames and --bench
   int width = 1280, height = 720;
   int steps_per_frame = 1;
   int max_segments = kDefaultMaxSegments;

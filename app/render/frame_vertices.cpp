@@ -322,6 +322,27 @@ void add_selected_outline(Shapes& world, const std::vector<Vec2>& p, const Frame
     for (int k = 0; k < 3; ++k) add_segment(world, p[tri[k]], p[tri[(k + 1) % 3]], width, color);
 }
 
+// A colour bar's ticks, right of the bar at bar_x1, each labelled; `bar_y` maps a tick's
+// position on the scale to its pixel row.
+struct BarTickLabels {
+  double label_x;  // where the labels start
+  double note_x;   // where notes right of the longest label start
+};
+template <class Tick, class BarY>
+BarTickLabels add_bar_ticks(FrameVertices& res, const std::vector<Tick>& ticks, double bar_x1,
+                            double s, double thin, const BarY& bar_y) {
+  const double small = res.font_sizes[kSmall];
+  const double tick_len = std::round(6.0 * s), label_x = bar_x1 + tick_len + std::round(6.0 * s);
+  double label_right = label_x;
+  for (const Tick& t : ticks) {
+    const double ty = std::round(bar_y(t.position));
+    add_rect(res.shapes, bar_x1, ty - 0.5 * thin, bar_x1 + tick_len, ty + 0.5 * thin, kMutedInk);
+    res.add_text(t.label, kSmall, label_x, ty + 0.36 * small, kInk);
+    label_right = std::max(label_right, label_x + res.atlas->text_width(t.label, kSmall));
+  }
+  return {label_x, label_right + std::round(14.0 * s)};
+}
+
 // The colour bar of a field other than det F, laid out as det F's below the panel's text:
 // its title and what it is (field_legend.h, wrapped to the panel), the bar of its scale
 // (app/field_colormap.h) with round ticks, markers at the frame's min and max (Psi,
@@ -383,15 +404,8 @@ void draw_field_bar(FrameVertices& res, const FrameLayout& L, const FieldScale& 
       break;
   }
   add_rect_outline(panel, bar_x0, bar_y0, bar_x1, bar_y1, thin, kMutedInk);
-  const double tick_len = std::round(6.0 * s), label_x = bar_x1 + tick_len + std::round(6.0 * s);
-  double label_right = label_x;
-  for (const FieldTick& t : field_bar_ticks(scale)) {
-    const double ty = std::round(bar_y(t.position));
-    add_rect(panel, bar_x1, ty - 0.5 * thin, bar_x1 + tick_len, ty + 0.5 * thin, kMutedInk);
-    res.add_text(t.label, kSmall, label_x, ty + 0.36 * small, kInk);
-    label_right = std::max(label_right, label_x + res.atlas->text_width(t.label, kSmall));
-  }
-  const double note_x = label_right + std::round(14.0 * s);
+  const BarTickLabels ticks = add_bar_ticks(res, field_bar_ticks(scale), bar_x1, s, thin, bar_y);
+  const double label_x = ticks.label_x, note_x = ticks.note_x;
   // The ring legend: the inverted triangles' mark, whatever the colouring.
   const Vec2 ring_centre(0.5 * (bar_x0 + bar_x1), 0.5 * (swatch_y0 + swatch_y1));
   const double ring_r = 0.42 * swatch_h;
@@ -515,15 +529,8 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   }
   const double thin = std::max(1.0, std::round(s));
   add_rect_outline(panel, bar_x0, bar_y0, bar_x1, bar_y1, thin, kMutedInk);
-  const double tick_len = std::round(6.0 * s), label_x = bar_x1 + tick_len + std::round(6.0 * s);
-  double label_right = label_x;
-  for (const ColorBarTick& t : color_bar_ticks(range)) {
-    const double ty = std::round(bar_y(t.position));
-    add_rect(panel, bar_x1, ty - 0.5 * thin, bar_x1 + tick_len, ty + 0.5 * thin, kMutedInk);
-    res.add_text(t.label, kSmall, label_x, ty + 0.36 * small, kInk);
-    label_right = std::max(label_right, label_x + res.atlas->text_width(t.label, kSmall));
-  }
-  const double note_x = label_right + std::round(14.0 * s);
+  const BarTickLabels ticks = add_bar_ticks(res, color_bar_ticks(range), bar_x1, s, thin, bar_y);
+  const double label_x = ticks.label_x, note_x = ticks.note_x;
   add_rect(panel, bar_x0, swatch_y0, bar_x1, swatch_y1, rgba(kInvertedColor));
   add_rect_outline(panel, bar_x0, swatch_y0, bar_x1, swatch_y1, thin, kMutedInk);
   res.add_text("det F ≤ 0 (ringed)", kSmall, label_x, 0.5 * (swatch_y0 + swatch_y1) + 0.36 * small,

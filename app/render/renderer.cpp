@@ -308,9 +308,9 @@ void principal_stresses(const Simulation& sim, std::vector<Vec2>* values,
     const double len2 = 2.0 * radius * (radius + std::abs(half_diff));
     if (!(len2 > 0.0)) continue;  // isotropic stress: every direction is principal
     const double inv = 1.0 / std::sqrt(len2);
-    (*directions)[static_cast<size_t>(t)] =
-        half_diff >= 0.0 ? Vec2((radius + half_diff) * inv, off * inv)
-                         : Vec2(off * inv, (radius - half_diff) * inv);
+    (*directions)[static_cast<size_t>(t)] = half_diff >= 0.0
+                                                ? Vec2((radius + half_diff) * inv, off * inv)
+                                                : Vec2(off * inv, (radius - half_diff) * inv);
   }
 }
 

@@ -11,8 +11,8 @@
 //  - the ground and the ceiling as hatched half-planes;
 //  - a side panel: scene name, model, mu, lambda, t, step, min/max det F (and the count of
 //    inverted triangles when there are any), and the colour bar of the field the
-//    triangles are coloured by, with numeric ticks, markers at the current min and max, and the det F <= 0 swatch
-//    (a ring for the other fields: inverted triangles are ringed in every colouring);
+//    triangles are coloured by, with numeric ticks, markers at the current min and max, and the det
+//    F <= 0 swatch (a ring for the other fields: inverted triangles are ringed in every colouring);
 //  - optionally a cross of principal stress strokes per triangle (or per cell of a fine
 //    mesh) and a thick outline around one selected triangle.
 // Nothing depends on the wall clock, so the same state gives the same picture.

@@ -11,9 +11,9 @@ namespace {
 
 // Symbols beyond ASCII that labels use: mu, lambda, Delta, nu, rho, <=, >=, element-of,
 // en dash, middle dot, times, minus, superscripts, arrows, the colour bar's marker.
-constexpr char32_t kExtraCodepoints[] = {U'μ', U'λ', U'Δ', U'ν', U'ρ', U'≤', U'≥',
-                                         U'∈', U'–', U'·', U'×', U'−', U'²', U'³',
-                                         U'⁻', U'¹', U'↑', U'↓', U'°', U'…', U'▶', U'Ψ'};
+constexpr char32_t kExtraCodepoints[] = {U'μ', U'λ', U'Δ', U'ν', U'ρ', U'≤', U'≥', U'∈',
+                                         U'–', U'·', U'×', U'−', U'²', U'³', U'⁻', U'¹',
+                                         U'↑', U'↓', U'°', U'…', U'▶', U'Ψ'};
 
 constexpr int kAtlasWidth = 1024;
 

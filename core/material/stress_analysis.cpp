@@ -110,8 +110,7 @@ int clamped_eigenvalue_count(Model model, const Mat2& F, const Lame& lame) {
     using M = decltype(m);
     Vec2 sigma(1.0, 1.0);
     if constexpr (kHasDiagonalSpace<M>) sigma = polar_svd(F).sigma;
-    return static_cast<int>(
-        (stress_derivative_eigenvalues<M>(sigma, lame).array() < 0.0).count());
+    return static_cast<int>((stress_derivative_eigenvalues<M>(sigma, lame).array() < 0.0).count());
   });
 }
 

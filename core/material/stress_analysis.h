@@ -31,8 +31,7 @@
 namespace invfree {
 
 // The names of the four eigenvalues, in their order.
-inline constexpr std::array<const char*, 4> kEigenvalueNames{"scale 1", "scale 2", "flip",
-                                                             "twist"};
+inline constexpr std::array<const char*, 4> kEigenvalueNames{"scale 1", "scale 2", "flip", "twist"};
 
 struct StressAnalysis {
   Model model = Model::NeoHookean;
@@ -44,11 +43,11 @@ struct StressAnalysis {
   Mat2 P = Mat2::Zero();
   // P F^T / J (see above: symmetric but for linear elasticity); zero where J = 0 (undefined).
   Mat2 cauchy = Mat2::Zero();
-  Vec2 principal_stress = Vec2::Zero();             // cauchy's (symmetric part's) eigenvalues, larger first
-  Mat2 principal_directions = Mat2::Identity();     // unit eigenvectors, columns in that order
-  Vec4 eigenvalues = Vec4::Zero();                  // of dP/dF, in kEigenvalueNames' order
-  Vec4 projected_eigenvalues = Vec4::Zero();        // after clamping the negative ones
-  int clamped = 0;                                  // how many the projection changed
+  Vec2 principal_stress = Vec2::Zero();  // cauchy's (symmetric part's) eigenvalues, larger first
+  Mat2 principal_directions = Mat2::Identity();  // unit eigenvectors, columns in that order
+  Vec4 eigenvalues = Vec4::Zero();               // of dP/dF, in kEigenvalueNames' order
+  Vec4 projected_eigenvalues = Vec4::Zero();     // after clamping the negative ones
+  int clamped = 0;                               // how many the projection changed
   bool finite = true;  // false where Psi is +inf (neo-Hookean at J <= 0): no P, no Hessian
 };
 

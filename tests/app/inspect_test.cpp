@@ -187,11 +187,24 @@ std::string args_of(const std::string& scene, const std::vector<std::string>& se
 }
 
 // The keys, in the documented order (docs/cli.md): the issue's, and `triangle` first.
-const std::vector<std::string> kKeys = {
-    "triangle", "model", "mu",     "lambda",           "F",           "U",
-    "sigma",    "V",     "J",      "psi",              "P",           "cauchy",
-    "principal_stress", "eigenvalues", "projected_eigenvalues", "clamped", "fd_error_P",
-    "fd_error_dPdF"};
+const std::vector<std::string> kKeys = {"triangle",
+                                        "model",
+                                        "mu",
+                                        "lambda",
+                                        "F",
+                                        "U",
+                                        "sigma",
+                                        "V",
+                                        "J",
+                                        "psi",
+                                        "P",
+                                        "cauchy",
+                                        "principal_stress",
+                                        "eigenvalues",
+                                        "projected_eigenvalues",
+                                        "clamped",
+                                        "fd_error_P",
+                                        "fd_error_dPdF"};
 
 void expect_matrix(const Json& j, const Mat2& m, const std::string& what) {
   ASSERT_EQ(j.kind, Json::Array) << what;
@@ -398,8 +411,9 @@ TEST(Inspect, BadInputExitsTwoWithOneLine) {
       {base + "--step 1 --at nan,0", "--at nan,0: expected X,Y"},
       {base + "--step 1 --at 0,inf", "--at 0,inf: expected X,Y"},
       {base + "--step 1 --at ' 0.1,0.1'", "expected X,Y"},
-      {base + "--step -1 --triangle 0", "--step: expected a whole number of steps from 0 to "
-                                         "100000000, got -1"},
+      {base + "--step -1 --triangle 0",
+       "--step: expected a whole number of steps from 0 to "
+       "100000000, got -1"},
       {base + "--step 1.5 --triangle 0", "got 1.5"},
       {base + "--step 100000001 --triangle 0", "got 100000001"},
       {base + "--triangle 0", "--step is required"},
@@ -424,10 +438,10 @@ TEST(Inspect, BadInputExitsTwoWithOneLine) {
 TEST(Inspect, FailedStepExitsThree) {
   // Newton's cap of 1 iteration with an unreachable tolerance: the first step fails.
   for (const char* what : {"--triangle 0", "--at 0,0", "--triangle 0 --json"}) {
-    const CommandResult r = run(
-        std::string("inspect --scene compress --set time.max_newton=1 --set time.tol=1e-14 "
-                    "--step 3 ") +
-        what);
+    const CommandResult r =
+        run(std::string("inspect --scene compress --set time.max_newton=1 --set time.tol=1e-14 "
+                        "--step 3 ") +
+            what);
     EXPECT_EQ(r.code, 3) << what << "\n" << r.err;
     EXPECT_TRUE(test::one_line(r.err)) << r.err;
     EXPECT_NE(r.err.find("invfree: step 1 failed: newton-failed"), std::string::npos) << r.err;
@@ -435,9 +449,9 @@ TEST(Inspect, FailedStepExitsThree) {
     EXPECT_EQ(r.out, "");
   }
   // Step 0 needs no step: the same settings inspect the initial state.
-  const CommandResult r0 = run(
-      "inspect --scene compress --set time.max_newton=1 --set time.tol=1e-14 --step 0 "
-      "--triangle 0 --json");
+  const CommandResult r0 =
+      run("inspect --scene compress --set time.max_newton=1 --set time.tol=1e-14 --step 0 "
+          "--triangle 0 --json");
   EXPECT_EQ(r0.code, 0) << r0.err;
 }
 

@@ -37,14 +37,19 @@ inline RgbImage draw_data_image(const ImDrawData* dd, int width, int height,
       for (unsigned e = 0; e + 2 < cmd.ElemCount; e += 3) {
         const ImDrawVert* v[3];
         for (int k = 0; k < 3; ++k)
-          v[k] = &list->VtxBuffer[static_cast<int>(cmd.VtxOffset + list->IdxBuffer[static_cast<int>(cmd.IdxOffset + e + k)])];
+          v[k] = &list->VtxBuffer[static_cast<int>(
+              cmd.VtxOffset + list->IdxBuffer[static_cast<int>(cmd.IdxOffset + e + k)])];
         const float area = (v[1]->pos.x - v[0]->pos.x) * (v[2]->pos.y - v[0]->pos.y) -
                            (v[2]->pos.x - v[0]->pos.x) * (v[1]->pos.y - v[0]->pos.y);
         if (std::abs(area) < 1e-12f) continue;
-        const int x0 = std::max(cx0, static_cast<int>(std::floor(std::min({v[0]->pos.x, v[1]->pos.x, v[2]->pos.x}))));
-        const int x1 = std::min(cx1, static_cast<int>(std::ceil(std::max({v[0]->pos.x, v[1]->pos.x, v[2]->pos.x}))));
-        const int y0 = std::max(cy0, static_cast<int>(std::floor(std::min({v[0]->pos.y, v[1]->pos.y, v[2]->pos.y}))));
-        const int y1 = std::min(cy1, static_cast<int>(std::ceil(std::max({v[0]->pos.y, v[1]->pos.y, v[2]->pos.y}))));
+        const int x0 = std::max(
+            cx0, static_cast<int>(std::floor(std::min({v[0]->pos.x, v[1]->pos.x, v[2]->pos.x}))));
+        const int x1 = std::min(
+            cx1, static_cast<int>(std::ceil(std::max({v[0]->pos.x, v[1]->pos.x, v[2]->pos.x}))));
+        const int y0 = std::max(
+            cy0, static_cast<int>(std::floor(std::min({v[0]->pos.y, v[1]->pos.y, v[2]->pos.y}))));
+        const int y1 = std::min(
+            cy1, static_cast<int>(std::ceil(std::max({v[0]->pos.y, v[1]->pos.y, v[2]->pos.y}))));
         for (int y = y0; y < y1; ++y)
           for (int x = x0; x < x1; ++x) {
             const float sx = x + 0.5f, sy = y + 0.5f;
@@ -52,7 +57,9 @@ inline RgbImage draw_data_image(const ImDrawData* dd, int width, int height,
             for (int k = 0; k < 3; ++k) {
               const ImDrawVert* a = v[(k + 1) % 3];
               const ImDrawVert* b = v[(k + 2) % 3];
-              w[k] = ((b->pos.x - a->pos.x) * (sy - a->pos.y) - (sx - a->pos.x) * (b->pos.y - a->pos.y)) / area;
+              w[k] = ((b->pos.x - a->pos.x) * (sy - a->pos.y) -
+                      (sx - a->pos.x) * (b->pos.y - a->pos.y)) /
+                     area;
             }
             // Inside or on an edge (a pixel on an edge two triangles share is blended twice).
             if (w[0] < 0 || w[1] < 0 || w[2] < 0) continue;

@@ -3,13 +3,14 @@
 // tolerance; INVFREE_UPDATE_GOLDENS=1 rewrites them: look at them before committing), and
 // what the chart says where: the title with the model and the Lame parameters, the axis
 // labels, the colour bar's unit and levels, the wall's label, all inside the drawing.
+#include "app/landscape/landscape_chart.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <fstream>
 #include <string>
 
-#include "app/landscape/landscape_chart.h"
 #include "tests/render/image_compare.h"
 #include "tests/test_paths.h"
 
@@ -18,7 +19,9 @@ namespace {
 
 const Lame kLame = lame_from_young_poisson(1e5, 0.4);
 
-std::string golden_dir() { return std::string(test::source_dir()) + "/tests/landscape/goldens"; }
+std::string golden_dir() {
+  return std::string(test::source_dir()) + "/tests/landscape/goldens";
+}
 
 test::RgbImage png_image(Canvas& canvas, const std::string& name) {
   const std::string path = ::testing::TempDir() + "/landscape_" + name + ".png";
@@ -59,14 +62,14 @@ TEST(LandscapeChart, NeoHookeanGolden) {
   LandscapeChartSpec s = spec_of({Model::NeoHookean});
   s.plot_height = kGoldenPlotHeight;
   auto canvas = landscape_chart(s, ChartFormat::Png);
-  const std::string m =
-      test::check_golden(png_image(*canvas, "nh"), "landscape_neo_hookean", golden_dir(),
-                         test::golden_failure_dir());
+  const std::string m = test::check_golden(png_image(*canvas, "nh"), "landscape_neo_hookean",
+                                           golden_dir(), test::golden_failure_dir());
   EXPECT_TRUE(m.empty()) << m;
 }
 
 TEST(LandscapeChart, AllModelsGolden) {
-  LandscapeChartSpec s = spec_of({Model::NeoHookean, Model::Linear, Model::Arap, Model::StableNeoHookean});
+  LandscapeChartSpec s =
+      spec_of({Model::NeoHookean, Model::Linear, Model::Arap, Model::StableNeoHookean});
   s.plot_height = kGoldenPlotHeight;
   // Dots where a teacher would point: rest, a stretch, a squeeze, near the wall, inverted.
   s.points = {{1.0, 1.0}, {1.4, 0.9}, {0.8, 0.6}, {1.5, 0.05}, {1.3, -0.4}};
@@ -105,7 +108,8 @@ TEST(LandscapeChart, SaysWhatItShowsInsideTheDrawing) {
 }
 
 TEST(LandscapeChart, SideBySideNamesEveryModelAndWhyOnlyOneIsABarrier) {
-  LandscapeChartSpec s = spec_of({Model::NeoHookean, Model::Linear, Model::Arap, Model::StableNeoHookean});
+  LandscapeChartSpec s =
+      spec_of({Model::NeoHookean, Model::Linear, Model::Arap, Model::StableNeoHookean});
   s.points = {{1.0, 1.0}, {1.2, -0.3}};
   s.points_caption = "Dots: 2 triangles";
   auto canvas = landscape_chart(s, ChartFormat::Png);
@@ -131,8 +135,9 @@ TEST(LandscapeChart, ALongCaptionWrapsInsideTheDrawing) {
   // One model is the narrowest chart; a scene's caption with a long name must wrap.
   LandscapeChartSpec s = spec_of({Model::NeoHookean});
   s.points = {{1.0, 1.0}};
-  s.points_caption = "Dots: the 32 triangles of course-1-mass-spring (neo-Hookean) at step 10, "
-                     "t = 0.04 s, and a good many more words than fit on one line of it";
+  s.points_caption =
+      "Dots: the 32 triangles of course-1-mass-spring (neo-Hookean) at step 10, "
+      "t = 0.04 s, and a good many more words than fit on one line of it";
   auto canvas = landscape_chart(s, ChartFormat::Png);
   expect_texts_inside(*canvas);
   EXPECT_TRUE(has_text(*canvas, "Dots: the 32 triangles"));
@@ -141,7 +146,8 @@ TEST(LandscapeChart, ALongCaptionWrapsInsideTheDrawing) {
 TEST(LandscapeChart, VectorFormatsStaySmall) {
   // The heat map's equal neighbours merge into one rectangle: an SVG of the four models is
   // not a rectangle per cell.
-  LandscapeChartSpec s = spec_of({Model::NeoHookean, Model::Linear, Model::Arap, Model::StableNeoHookean});
+  LandscapeChartSpec s =
+      spec_of({Model::NeoHookean, Model::Linear, Model::Arap, Model::StableNeoHookean});
   auto canvas = landscape_chart(s, ChartFormat::Svg);
   const std::string svg = canvas->finish();
   EXPECT_NE(svg.find("<svg"), std::string::npos);

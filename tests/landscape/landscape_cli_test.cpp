@@ -21,7 +21,8 @@ CommandResult run(const std::string& args) {
 }
 
 std::string temp_dir(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/landscape_cli_" + name + "_" + std::to_string(::getpid());
+  const std::string dir =
+      ::testing::TempDir() + "/landscape_cli_" + name + "_" + std::to_string(::getpid());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
@@ -52,10 +53,10 @@ TEST(LandscapeCli, WritesEachFormat) {
 TEST(LandscapeCli, AllModelsWithAScenesTrianglesAfterSteps) {
   const std::string dir = temp_dir("scene");
   const std::string out = dir + "/all.png";
-  const CommandResult r = run(
-      "--model all --scene compress --set material.model=linear --set material.E=1e4 --set "
-      "mesh.n_seg=8 --set initial.velocity=[0,-8] --step 23 --out " +
-      out);
+  const CommandResult r =
+      run("--model all --scene compress --set material.model=linear --set material.E=1e4 --set "
+          "mesh.n_seg=8 --set initial.velocity=[0,-8] --step 23 --out " +
+          out);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("landscape: 4 models"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("128 triangles at step 23"), std::string::npos) << r.out;

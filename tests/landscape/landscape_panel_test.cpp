@@ -4,6 +4,8 @@
 // spot, and stays within the 65536 vertices a draw list has on the web page (16-bit indices
 // without the backend's vertex offsets) however many triangles there are; and a golden of
 // it, rasterised on the CPU (draw_data_image.h) with the live window's font and glyphs.
+#include "app/live/landscape_panel.h"
+
 #include <gtest/gtest.h>
 #include <imgui.h>
 
@@ -11,7 +13,6 @@
 #include <random>
 #include <string>
 
-#include "app/live/landscape_panel.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 #include "tests/landscape/draw_data_image.h"
@@ -35,13 +36,16 @@ class Frame {
     // The live window's font (DejaVu Sans at 16 px) with the Greek and symbols it adds.
     ImFontGlyphRangesBuilder builder;
     builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
-    builder.AddText("\u03bc\u03bb\u03bd\u03c3\u03c8\u03a8\u0394\u2264\u2265\u00b7\u00d7\u2212\u00b2\u2202\u221e\u2192\u2081\u2082");
+    builder.AddText(
+        "\u03bc\u03bb\u03bd\u03c3\u03c8\u03a8\u0394\u2264\u2265\u00b7\u00d7\u2212\u00b2\u2202\u221e"
+        "\u2192\u2081\u2082");
     builder.BuildRanges(&ranges_);
     ImFontConfig cfg;
     cfg.FontDataOwnedByAtlas = false;
-    io.Fonts->AddFontFromMemoryTTF(const_cast<unsigned char*>(invfree_chart_font_begin),
-                                   static_cast<int>(invfree_chart_font_end - invfree_chart_font_begin),
-                                   16.0f, &cfg, ranges_.Data);
+    io.Fonts->AddFontFromMemoryTTF(
+        const_cast<unsigned char*>(invfree_chart_font_begin),
+        static_cast<int>(invfree_chart_font_end - invfree_chart_font_begin), 16.0f, &cfg,
+        ranges_.Data);
     unsigned char* pixels;
     int w, h;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
@@ -74,9 +78,8 @@ TEST(LandscapePanel, DrawsAndKeepsItsGridBetweenFrames) {
   LandscapePanelCache cache;
   std::vector<SigmaPair> pts = {{1.0, 1.0}, {1.1, 0.9}, {1.5, 0.4}};
   for (int k = 0; k < 3; ++k) {
-    const int v = f.run([&] {
-      draw_landscape_panel(Model::NeoHookean, kLame, pts, 1, ImVec2(400, 500), cache);
-    });
+    const int v = f.run(
+        [&] { draw_landscape_panel(Model::NeoHookean, kLame, pts, 1, ImVec2(400, 500), cache); });
     EXPECT_GT(v, 1000);
     EXPECT_LT(v, 65536);
     pts[2].s2 += 0.1;  // the dots move; the grid stays
@@ -127,7 +130,9 @@ SceneDef scene(const std::string& name, const std::vector<std::string>& override
   return s;
 }
 
-std::string golden_dir() { return std::string(test::source_dir()) + "/tests/landscape/goldens"; }
+std::string golden_dir() {
+  return std::string(test::source_dir()) + "/tests/landscape/goldens";
+}
 
 // The panel at the live window's size (its landscape window is 270 px wide at UI scale 1:
 // 254 inside, asked for 1.2 times as tall), pixels compared with
@@ -159,8 +164,8 @@ TEST(LandscapePanel, NeoHookeanSquashedGolden) {
 TEST(LandscapePanel, LinearInvertedGolden) {
   // The soft linear square thrown at the ground (as the render golden linear_inverted): dots
   // below s2 = 0, the selected one of them ringed.
-  Simulation sim = make_simulation(scene(
-      "compress", {"material.model=linear", "material.E=1e4", "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
+  Simulation sim = make_simulation(scene("compress", {"material.model=linear", "material.E=1e4",
+                                                      "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
   while (sim.step_count < 23) ASSERT_EQ(step(sim).status, StepStatus::Ok);
   std::vector<SigmaPair> s;
   triangle_sigmas(sim, &s);

@@ -2,6 +2,8 @@
 // density, neo-Hookean is +infinity exactly where s1 s2 <= 0 and the invertible models are
 // finite there, the contours lie on their levels and close around the rest point, the
 // triangles' points are their polar SVDs, and the cache rebuilds only when its inputs change.
+#include "app/landscape/landscape.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +11,6 @@
 #include <cstdio>
 #include <string>
 
-#include "app/landscape/landscape.h"
 #include "material/models.h"
 #include "material/polar_svd.h"
 #include "scene_io/builtin_scenes.h"
@@ -63,7 +64,8 @@ TEST(Landscape, NeoHookeanIsForbiddenExactlyWhereTheProductIsNotPositive) {
       EXPECT_EQ(std::isfinite(psi), !wall) << s1 << ", " << s2;
       EXPECT_EQ(landscape_forbidden(Model::NeoHookean, s1, s2), wall);
       const Rgb c = landscape_color(scale, psi);
-      const bool grey = c.r == kForbiddenColor.r && c.g == kForbiddenColor.g && c.b == kForbiddenColor.b;
+      const bool grey =
+          c.r == kForbiddenColor.r && c.g == kForbiddenColor.g && c.b == kForbiddenColor.b;
       EXPECT_EQ(grey, wall) << s1 << ", " << s2;
       forbidden += wall;
     }
@@ -84,7 +86,8 @@ TEST(Landscape, InvertibleModelsAreFiniteThroughZeroAndIntoInversion) {
     const LandscapeScale scale = landscape_scale(kLame);
     for (int j = 0; j < g.n2; ++j)
       for (int i = 0; i < g.n1; ++i) {
-        EXPECT_TRUE(std::isfinite(g.at(i, j))) << model_name(m) << " " << g.s1(i) << ", " << g.s2(j);
+        EXPECT_TRUE(std::isfinite(g.at(i, j)))
+            << model_name(m) << " " << g.s1(i) << ", " << g.s2(j);
         EXPECT_FALSE(landscape_forbidden(m, g.s1(i), g.s2(j)));
         EXPECT_FALSE(std::isnan(landscape_scale_position(scale, g.at(i, j))));
       }
@@ -102,7 +105,8 @@ TEST(Landscape, ScaleAndLevelsAreLogSpacedRoundNumbers) {
   const auto levels = landscape_contour_levels(s);
   const std::vector<double> expected = {1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6};
   ASSERT_EQ(levels.size(), expected.size());
-  for (size_t k = 0; k < levels.size(); ++k) EXPECT_NEAR(levels[k], expected[k], 1e-9 * expected[k]);
+  for (size_t k = 0; k < levels.size(); ++k)
+    EXPECT_NEAR(levels[k], expected[k], 1e-9 * expected[k]);
   EXPECT_EQ(landscape_scale_position(s, 0.0), 0.0);
   EXPECT_EQ(landscape_scale_position(s, 500.0), 0.0);
   EXPECT_NEAR(landscape_scale_position(s, 1e4), 1.0 / 3.0, 1e-12);
@@ -110,9 +114,9 @@ TEST(Landscape, ScaleAndLevelsAreLogSpacedRoundNumbers) {
   EXPECT_TRUE(std::isnan(landscape_scale_position(s, INFINITY)));
   EXPECT_TRUE(std::isnan(landscape_scale_position(s, NAN)));
   // Rounded up to 1, 2 or 5 x 10^k.
-  EXPECT_DOUBLE_EQ(landscape_scale({1000.0, 0.0}).hi, 5000.0);  // 4000
+  EXPECT_DOUBLE_EQ(landscape_scale({1000.0, 0.0}).hi, 5000.0);    // 4000
   EXPECT_DOUBLE_EQ(landscape_scale({1000.0, 250.0}).hi, 5000.0);  // 5000 exactly
-  EXPECT_DOUBLE_EQ(landscape_scale({1000.0, 300.0}).hi, 1e4);    // 5200
+  EXPECT_DOUBLE_EQ(landscape_scale({1000.0, 300.0}).hi, 1e4);     // 5200
 }
 
 TEST(Landscape, ColoursRunFromPaleToDarkAndTheForbiddenOneIsOnNoScale) {
@@ -165,7 +169,8 @@ double check_contours(Model m, int per_unit) {
       worst = std::max(worst, std::abs(psi - line.level) / line.level);
       ++checked;
       if (on_vertical && on_horizontal) {  // on a node (t within 1e-9 of 0 or 1)
-        const double node = g.at(static_cast<int>(std::round(fi)), static_cast<int>(std::round(fj)));
+        const double node =
+            g.at(static_cast<int>(std::round(fi)), static_cast<int>(std::round(fj)));
         EXPECT_NEAR(node, line.level, 1e-6 * line.level);
         continue;
       }
@@ -206,8 +211,9 @@ TEST(Landscape, ContoursLieOnTheirLevels) {
   for (Model m : kAll) {
     const double coarse = check_contours(m, 100), fine = check_contours(m, 200);
     EXPECT_LT(fine, coarse / 3.0) << model_name(m) << ": " << coarse << " -> " << fine;
-    std::printf("%s: largest relative error of a contour point %.3g (100 nodes a unit), %.3g (200)\n",
-                model_name(m), coarse, fine);
+    std::printf(
+        "%s: largest relative error of a contour point %.3g (100 nodes a unit), %.3g (200)\n",
+        model_name(m), coarse, fine);
   }
 }
 
@@ -258,8 +264,8 @@ SceneDef scene(const std::string& name, const std::vector<std::string>& override
 
 TEST(Landscape, TrianglePointsArePolarSvdsOfTheirF) {
   // A soft linear square thrown at the ground: some triangles invert (s2 < 0).
-  Simulation sim = make_simulation(scene(
-      "compress", {"material.model=linear", "material.E=1e4", "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
+  Simulation sim = make_simulation(scene("compress", {"material.model=linear", "material.E=1e4",
+                                                      "mesh.n_seg=8", "initial.velocity=[0,-8]"}));
   while (sim.step_count < 23) ASSERT_EQ(step(sim).status, StepStatus::Ok);
   std::vector<SigmaPair> s;
   triangle_sigmas(sim, &s);

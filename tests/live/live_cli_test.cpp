@@ -63,12 +63,16 @@ TEST(LiveCli, HelpListsEveryKey) {
 TEST(LiveCli, BadInputIsRejectedBeforeAnyWindow) {
   const std::string dir = ::testing::TempDir();
   { std::ofstream(dir + "/live_bad_nu.toml") << "[material]\nE = 1e5\nnu = 0.7\n"; }
-  const std::vector<std::string> cases = {
-      "live --scene nosuchscene", "live --set material.nu=0.5",
-      "live --frames -1",         "live --size 10x10",
-      "live --size big",          "live " + dir + "/live_bad_nu.toml",
-      "live --steps-per-frame 0", "live --color-by nosuchfield",
-      "live --select-triangle 100000000", "live --select-triangle -1"};
+  const std::vector<std::string> cases = {"live --scene nosuchscene",
+                                          "live --set material.nu=0.5",
+                                          "live --frames -1",
+                                          "live --size 10x10",
+                                          "live --size big",
+                                          "live " + dir + "/live_bad_nu.toml",
+                                          "live --steps-per-frame 0",
+                                          "live --color-by nosuchfield",
+                                          "live --select-triangle 100000000",
+                                          "live --select-triangle -1"};
   for (const std::string& args : cases) {
     const Result r = run_headless(args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;

@@ -28,8 +28,7 @@
 namespace invfree {
 namespace {
 
-const Model kAllModels[] = {Model::NeoHookean, Model::Linear, Model::Arap,
-                            Model::StableNeoHookean};
+const Model kAllModels[] = {Model::NeoHookean, Model::Linear, Model::Arap, Model::StableNeoHookean};
 
 Mat2 rot(double angle) {
   Mat2 r;
@@ -55,8 +54,8 @@ std::vector<Sample> sweep(bool inverted) {
   const auto add = [&](const std::string& what, double s1, double s2) {
     for (const auto& ab : angles) {
       std::ostringstream name;
-      name << what << " sigma = (" << s1 << ", " << s2 << "), angles (" << ab[0] << ", "
-           << ab[1] << ")";
+      name << what << " sigma = (" << s1 << ", " << s2 << "), angles (" << ab[0] << ", " << ab[1]
+           << ")";
       out.push_back({name.str(), make_F(ab[0], s1, s2, ab[1])});
     }
   };
@@ -171,8 +170,8 @@ struct SweepCounts {
 
 void check_sample(Model model, const Lame& lame, const Sample& sample, SweepCounts* counts) {
   const Mat2& F = sample.F;
-  SCOPED_TRACE(std::string(model_name(model)) + ", mu " + std::to_string(lame.mu) +
-               ", lambda " + std::to_string(lame.lambda) + ": " + sample.what);
+  SCOPED_TRACE(std::string(model_name(model)) + ", mu " + std::to_string(lame.mu) + ", lambda " +
+               std::to_string(lame.lambda) + ": " + sample.what);
   const StressAnalysis a = analyze_stress(model, F, lame);
   ASSERT_TRUE(a.finite);
   const Differences d = differences(model, F, lame);
@@ -183,8 +182,7 @@ void check_sample(Model model, const Lame& lame, const Sample& sample, SweepCoun
   EXPECT_EQ(a.lame, lame);
   EXPECT_EQ(a.F, F);
   const double scale_F = F.norm();
-  EXPECT_LT((a.svd.U * a.svd.sigma.asDiagonal() * a.svd.V.transpose() - F).norm(),
-            1e-14 * scale_F);
+  EXPECT_LT((a.svd.U * a.svd.sigma.asDiagonal() * a.svd.V.transpose() - F).norm(), 1e-14 * scale_F);
   for (const Mat2* R : {&a.svd.U, &a.svd.V}) {
     EXPECT_LT((R->transpose() * *R - Mat2::Identity()).norm(), 1e-14);
     EXPECT_NEAR(R->determinant(), 1.0, 1e-14);  // rotations, not reflections
@@ -202,8 +200,8 @@ void check_sample(Model model, const Lame& lame, const Sample& sample, SweepCoun
   // 2e-12 of the stiffness mu + |lambda| here; P = 0 exactly at a rotation).
   const double stiffness = lame.mu + std::abs(lame.lambda);
   const double floor = 1e-4 * stiffness;
-  const double err_P = (a.P - d.P).norm() /
-                       (d.P.norm() + kStressNoise / kStressTolerance * stiffness * F.norm());
+  const double err_P =
+      (a.P - d.P).norm() / (d.P.norm() + kStressNoise / kStressTolerance * stiffness * F.norm());
   EXPECT_LT(err_P, kStressTolerance) << "P\n" << a.P << "\nfinite differences\n" << d.P;
   counts->worst_P = std::max(counts->worst_P, err_P);
 
@@ -312,10 +310,11 @@ TEST(StressAnalysis, EveryModelMatchesFiniteDifferencesOverTheSweep) {
       if (model_allows_inversion(model))
         for (const Sample& s : sweep(true)) check_sample(model, lame, s, &counts);
     }
-    std::printf("%-20s %3d F: clamped checked at %d (%d with clamped > 0); worst |P - fd| %.2g, "
-                "|dP/dF - fd| %.2g (relative)\n",
-                model_name(model), counts.samples, counts.clamped_checked, counts.with_clamped,
-                counts.worst_P, counts.worst_H);
+    std::printf(
+        "%-20s %3d F: clamped checked at %d (%d with clamped > 0); worst |P - fd| %.2g, "
+        "|dP/dF - fd| %.2g (relative)\n",
+        model_name(model), counts.samples, counts.clamped_checked, counts.with_clamped,
+        counts.worst_P, counts.worst_H);
     // The sweep must exercise the clamping (every model but linear elasticity has negative
     // eigenvalues somewhere in it) and its check must not be skipped wholesale.
     EXPECT_GE(counts.clamped_checked, counts.samples - 2 * 5) << model_name(model);
@@ -366,7 +365,8 @@ TEST(StressAnalysis, FiniteDifferenceCheckCatchesWrongDerivatives) {
     DiagonalHessian swapped = NeoHookean::diagonal_hessian(svd.sigma, lame);
     std::swap(swapped.flip, swapped.twist);
     const Mat4 C_swapped = compose_stress_derivative(svd, swapped, false);
-    EXPECT_TRUE(wrong(finite_difference_errors(psi, P, C_swapped, F, true, floor).dPdF, right.dPdF));
+    EXPECT_TRUE(
+        wrong(finite_difference_errors(psi, P, C_swapped, F, true, floor).dPdF, right.dPdF));
     // The projected derivative where the projection clamps something.
     if (clamped_eigenvalue_count(Model::NeoHookean, F, lame) > 0) {
       const Mat4 C_projected = stress_derivative(Model::NeoHookean, F, lame, true);
@@ -381,7 +381,8 @@ TEST(StressAnalysis, FiniteDifferenceCheckCatchesWrongDerivatives) {
 // Where neo-Hookean's energy is +inf (J <= 0) the analysis says so and reports no stress.
 TEST(StressAnalysis, InvertedNeoHookeanIsNotFinite) {
   const Lame lame{1.0, 4.0};
-  for (const Mat2& F : {make_F(0.3, 1.0, -0.5, 0.2), Mat2(Mat2::Zero()), make_F(0.0, 1.0, 0.0, 0.0)}) {
+  for (const Mat2& F :
+       {make_F(0.3, 1.0, -0.5, 0.2), Mat2(Mat2::Zero()), make_F(0.0, 1.0, 0.0, 0.0)}) {
     const StressAnalysis a = analyze_stress(Model::NeoHookean, F, lame);
     EXPECT_FALSE(a.finite);
     EXPECT_EQ(a.psi, std::numeric_limits<double>::infinity());
@@ -421,7 +422,9 @@ Simulation stepped(const SceneDef& scene, int steps) {
   return sim;
 }
 
-Vec2 node(const Simulation& sim, int i) { return Vec2(sim.x[2 * i], sim.x[2 * i + 1]); }
+Vec2 node(const Simulation& sim, int i) {
+  return Vec2(sim.x[2 * i], sim.x[2 * i + 1]);
+}
 
 Vec2 centroid(const Simulation& sim, int t) {
   const auto& tri = sim.mesh.triangles[static_cast<size_t>(t)];
@@ -450,9 +453,10 @@ TEST(TriangleAt, FindsTheTriangleUnderAPoint) {
     lo = lo.cwiseMin(node(sim, i));
     hi = hi.cwiseMax(node(sim, i));
   }
-  for (const Vec2& p : {Vec2(hi.x() + 0.01, 0.5 * (lo.y() + hi.y())), Vec2(lo.x() - 1.0, lo.y()),
-                        Vec2(0.5 * (lo.x() + hi.x()), hi.y() + 1e-3), Vec2(100.0, -100.0),
-                        Vec2(std::nan(""), 0.0), Vec2(0.0, std::numeric_limits<double>::infinity())})
+  for (const Vec2& p :
+       {Vec2(hi.x() + 0.01, 0.5 * (lo.y() + hi.y())), Vec2(lo.x() - 1.0, lo.y()),
+        Vec2(0.5 * (lo.x() + hi.x()), hi.y() + 1e-3), Vec2(100.0, -100.0), Vec2(std::nan(""), 0.0),
+        Vec2(0.0, std::numeric_limits<double>::infinity())})
     EXPECT_EQ(triangle_at(sim, p), std::nullopt) << p.transpose();
   // A shared node is in every triangle around it: the smallest index is reported.
   const int shared = sim.mesh.triangles[5][1];

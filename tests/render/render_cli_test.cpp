@@ -54,8 +54,9 @@ TEST(RenderCli, WritesFramesAndFrameZeroIsTheInitialState) {
             (std::vector<std::string>{"frame_000000.png", "frame_000001.png", "frame_000002.png"}));
   invfree::test::RgbImage frame0;
   ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000000.png", &frame0));
-  const std::string message = invfree::test::check_golden(frame0, "compress_t0", ::invfree::test::golden_dir(),
-                                                          std::string(::invfree::test::golden_failure_dir()) + "/cli");
+  const std::string message =
+      invfree::test::check_golden(frame0, "compress_t0", ::invfree::test::golden_dir(),
+                                  std::string(::invfree::test::golden_failure_dir()) + "/cli");
   if (std::getenv("INVFREE_UPDATE_GOLDENS") == nullptr) {
     EXPECT_EQ(message, "");
   }
