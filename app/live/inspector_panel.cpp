@@ -125,14 +125,16 @@ void inspector_contents(const Inspected& in, float scale) {
 
 }  // namespace
 
-bool draw_inspector(const Inspected& inspected, PanelState& ps, const WidgetRect& area, bool left) {
+bool draw_inspector(const Inspected& inspected, PanelState& ps, const WidgetRect& area, bool left,
+                    bool over_picture) {
   const float scale = ps.ui_scale;
   ImGui::SetNextWindowPos(ImVec2(left ? area.x0 + 8.0f : area.x1 - 8.0f, area.y0 + 8.0f),
                           ps.place_inspector ? ImGuiCond_Always : ImGuiCond_Appearing,
                           ImVec2(left ? 0.0f : 1.0f, 0.0f));
   ps.place_inspector = false;
-  ImGui::SetNextWindowSize(ImVec2(300.0f * scale, 0.0f), ImGuiCond_Always);  // 0: fit height
-  ImGui::SetNextWindowBgAlpha(0.88f);  // the body shows through a little
+  // Wide enough for a clamped eigenvalue's "-50.8 kPa -> 0 Pa"; 0: fit the height.
+  ImGui::SetNextWindowSize(ImVec2(316.0f * scale, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(over_picture ? 0.88f : 1.0f);
   bool open = true;
   if (ImGui::Begin("Inspector", &open, ImGuiWindowFlags_NoSavedSettings)) {
     inspector_contents(inspected, scale);

@@ -12,12 +12,14 @@
 
 namespace invfree::live {
 
-// Draws the window for `inspected` at the top of `area` (the picture's part of the window,
-// window pixels), on its left when `left` else its right (the caller picks the side away
-// from the triangle, so that the window does not hide it); placed so when a triangle is
-// picked (ps.place_inspector), it can then be moved and collapsed. Returns false when the
-// user closed it (its x): the selection is then to be released. Its rectangle goes to
-// ps.rects["inspector"].
-bool draw_inspector(const Inspected& inspected, PanelState& ps, const WidgetRect& area, bool left);
+// Draws the window for `inspected` at the top of `area` (window pixels: the det F panel's,
+// or the picture's), on its left when `left` else its right (over the picture the caller
+// picks the side away from the triangle, so that the window does not hide it); placed so
+// when a triangle is picked (ps.place_inspector), it can then be moved and collapsed.
+// `over_picture`: the body shows through a little; over the det F panel the window is
+// opaque (that panel's text would). Returns false when the user closed it (its x): the
+// selection is then to be released. Its rectangle goes to ps.rects["inspector"].
+bool draw_inspector(const Inspected& inspected, PanelState& ps, const WidgetRect& area, bool left,
+                    bool over_picture);
 
 }  // namespace invfree::live

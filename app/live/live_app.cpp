@@ -290,19 +290,30 @@ void LiveAppImpl::pick(const Vec2& world) {
     ++empty_clicks;
 }
 
-// The inspector's window over the picture, on the side away from its triangle (closing it,
-// its x, lets go of the triangle), and the energy landscape's window.
+// The inspector's window (closing it, its x, lets go of the triangle) and the energy
+// landscape's window. The inspector goes over the det F panel beside the picture when there
+// is one and the landscape's window does not hold its lower part: that panel's scene, model,
+// mu and lambda the inspector repeats, and the body stays in view. Otherwise it goes over
+// the picture, on the side away from its triangle.
 void LiveAppImpl::draw_inspection_windows(const WidgetRect& area) {
   const Simulation& sim = controller->simulation();
   inspection.update(sim, controller->mesh_generation());
-  bool inspector_left = false;
   if (const Inspected* in = inspection.inspected()) {
-    Vec2 c = Vec2::Zero();
-    for (int node : sim.mesh.triangles[static_cast<size_t>(in->triangle)])
-      c += sim.x.segment<2>(2 * node);
-    const Vec2 p = view.transform().to_screen(c / 3.0) / window.pixel_scale();
-    inspector_left = p.x() > 0.5 * (area.x0 + area.x1);
-    if (!draw_inspector(*in, panel, area, inspector_left)) inspection.release();
+    WidgetRect where = area;
+    bool inspector_left = false;
+    const bool over_panel = panel.det_f_panel == render::PanelMode::Side && !panel.show_landscape;
+    if (over_panel) {
+      const ImGuiViewport* vp = ImGui::GetMainViewport();
+      where.x0 = area.x1;
+      where.x1 = vp->WorkPos.x + vp->WorkSize.x;
+    } else {
+      Vec2 c = Vec2::Zero();
+      for (int node : sim.mesh.triangles[static_cast<size_t>(in->triangle)])
+        c += sim.x.segment<2>(2 * node);
+      const Vec2 p = view.transform().to_screen(c / 3.0) / window.pixel_scale();
+      inspector_left = p.x() > 0.5 * (area.x0 + area.x1);
+    }
+    if (!draw_inspector(*in, panel, where, inspector_left, !over_panel)) inspection.release();
   }
   draw_landscape_window(sim, inspection.selected(), panel, landscape_cache);
 }
