@@ -9,7 +9,6 @@
 #include "app/render/gl_api.h"
 #include "app/render/shader_sources.h"
 #include "app/render/text_atlas.h"
-#include "material/models.h"
 
 namespace invfree::render {
 
@@ -281,36 +280,18 @@ void Renderer::set_text_scale(double scale) {
 namespace {
 
 // Each triangle's principal Cauchy stresses (larger first) and the first one's unit
-// direction, for the stress glyphs: P from the model, sigma = P F^T / J, its closed-form
-// symmetric eigen-decomposition (as material/stress_analysis.cpp's, without the SVD and
-// the Hessian analysis a glyph does not need). Zero where a barrier model's energy is
-// infinite (J <= 0).
+// direction, for the stress glyphs.
 void principal_stresses(const Simulation& sim, std::vector<Vec2>* values,
                         std::vector<Vec2>* directions) {
-  const int n = sim.mesh.triangle_count();
-  values->assign(static_cast<size_t>(n), Vec2::Zero());
-  directions->assign(static_cast<size_t>(n), Vec2(1.0, 0.0));
-  const Model model = sim.scene.model;
-  const bool inversion_allowed = model_allows_inversion(model);
-  for (int t = 0; t < n; ++t) {
-    const Mat2 F = triangle_deformation_gradient(sim, t);
-    const double J = determinant(F);
-    if (J == 0.0 || (!inversion_allowed && !(J > 0.0))) continue;
-    const Mat2 P = first_piola(model, F, triangle_material(sim, t));
-    Mat2 c = P * F.transpose() / J;
-    c = 0.5 * (c + c.transpose());
-    const double mean = 0.5 * (c(0, 0) + c(1, 1)), half_diff = 0.5 * (c(0, 0) - c(1, 1));
-    const double off = c(0, 1), radius = std::hypot(half_diff, off);
-    (*values)[static_cast<size_t>(t)] = Vec2(mean + radius, mean - radius);
-    // The larger eigenvalue's vector from whichever row of (c - (mean + radius) I) is the
-    // longer, (radius + |half_diff|, +-off): no trigonometry (a frame at n_seg 64 has 8192
-    // triangles); its squared length is 2 radius (radius + |half_diff|).
-    const double len2 = 2.0 * radius * (radius + std::abs(half_diff));
-    if (!(len2 > 0.0)) continue;  // isotropic stress: every direction is principal
-    const double inv = 1.0 / std::sqrt(len2);
-    (*directions)[static_cast<size_t>(t)] = half_diff >= 0.0
-                                                ? Vec2((radius + half_diff) * inv, off * inv)
-                                                : Vec2(off * inv, (radius - half_diff) * inv);
+  const size_t n = static_cast<size_t>(sim.mesh.triangle_count());
+  values->resize(n);
+  directions->resize(n);
+  for (size_t t = 0; t < n; ++t) {
+    const int i = static_cast<int>(t);
+    const PrincipalStress p = principal_stress_of(
+        sim.scene.model, triangle_deformation_gradient(sim, i), triangle_material(sim, i));
+    (*values)[t] = p.values;
+    (*directions)[t] = p.direction;
   }
 }
 

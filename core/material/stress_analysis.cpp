@@ -96,12 +96,27 @@ double energy_density_of(Model model, const Mat2& F, const Lame& lame) {
   return energy_density(model, F, lame);
 }
 
-double signed_max_principal_stress(Model model, const Mat2& F, const Lame& lame) {
-  if (!energy_is_finite(model, F)) return 0.0;
+PrincipalStress principal_stress_of(Model model, const Mat2& F, const Lame& lame) {
+  PrincipalStress r;
+  if (!energy_is_finite(model, F)) return r;
   const double J = determinant(F);
-  Vec2 values;
-  symmetric_eigen(cauchy_of(model, first_piola(model, F, lame), F, J), &values, nullptr);
-  return std::abs(values(0)) >= std::abs(values(1)) ? values(0) : values(1);
+  const Mat2 c = cauchy_of(model, first_piola(model, F, lame), F, J);
+  const double mean = 0.5 * (c(0, 0) + c(1, 1)), half_diff = 0.5 * (c(0, 0) - c(1, 1));
+  const double off = 0.5 * (c(0, 1) + c(1, 0)), radius = std::hypot(half_diff, off);
+  r.values = Vec2(mean + radius, mean - radius);
+  // The larger eigenvalue's vector from whichever row of (c - (mean + radius) I) is the
+  // longer, (radius + |half_diff|, +-off); its squared length is 2 radius (radius + |half_diff|).
+  const double len2 = 2.0 * radius * (radius + std::abs(half_diff));
+  if (!(len2 > 0.0)) return r;  // isotropic stress: every direction is principal
+  const double inv = 1.0 / std::sqrt(len2);
+  r.direction = half_diff >= 0.0 ? Vec2((radius + half_diff) * inv, off * inv)
+                                 : Vec2(off * inv, (radius - half_diff) * inv);
+  return r;
+}
+
+double signed_max_principal_stress(Model model, const Mat2& F, const Lame& lame) {
+  const Vec2 v = principal_stress_of(model, F, lame).values;
+  return std::abs(v(0)) >= std::abs(v(1)) ? v(0) : v(1);
 }
 
 int clamped_eigenvalue_count(Model model, const Mat2& F, const Lame& lame) {

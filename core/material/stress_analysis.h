@@ -56,6 +56,14 @@ StressAnalysis analyze_stress(Model model, const Mat2& F, const Lame& lame);
 
 // Only what a colouring needs per triangle, without the SVD's vectors or P's eigenvectors.
 double energy_density_of(Model model, const Mat2& F, const Lame& lame);
+// The principal Cauchy stresses (larger first) and the first one's unit direction, without
+// the SVD or trigonometry (the stress glyphs ask for it per triangle every frame); zero
+// where J = 0 or a barrier model's energy is infinite.
+struct PrincipalStress {
+  Vec2 values = Vec2::Zero();
+  Vec2 direction = Vec2(1.0, 0.0);
+};
+PrincipalStress principal_stress_of(Model model, const Mat2& F, const Lame& lame);
 // The principal Cauchy stress of largest magnitude, signed (tension > 0); 0 where J <= 0
 // for a barrier model.
 double signed_max_principal_stress(Model model, const Mat2& F, const Lame& lame);
