@@ -16,6 +16,10 @@
 namespace invfree {
 namespace {
 
+// Beyond this the exact predicate's products could overflow (collision/orientation.h
+// holds to about 1e145); no body is that large.
+constexpr double kMaxCoordinate = 1e100;
+
 // How two closed segments meet: not at all, properly (each crosses the other's line at
 // an interior point), or in any other way (an end point on the other, collinear overlap).
 enum class Contact { None, Cross, Touch };
@@ -194,6 +198,9 @@ std::string basic_checks(const Loop& loop, const std::string& name) {
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(loop[i].x()) || !std::isfinite(loop[i].y()))
       return name + ": point " + std::to_string(i) + " is not finite";
+  for (int i = 0; i < n; ++i)
+    if (std::abs(loop[i].x()) > kMaxCoordinate || std::abs(loop[i].y()) > kMaxCoordinate)
+      return name + ": point " + std::to_string(i) + " is out of range (|coordinate| > 1e100 m)";
   for (int i = 0; i < n; ++i)
     if (loop[i] == loop[(i + 1) % n])
       return name + ": points " + std::to_string(i) + " and " + std::to_string((i + 1) % n) +

@@ -22,7 +22,8 @@
 
 namespace invfree {
 
-// One loop on its own: at least three points, every coordinate finite, no two consecutive
+// One loop on its own: at least three points, every coordinate finite and at most 1e100
+// in magnitude (the exact predicate's range), no two consecutive
 // points equal, not all points on one line ("zero area"), and no two edges meeting except
 // consecutive edges at their shared point (touching, crossing or overlapping is reported
 // with both edge indices; edge i joins point i to point i+1, the last one back to 0).

@@ -35,6 +35,8 @@ TEST(PolygonChecks, NotFinite) {
   EXPECT_EQ(check_loop(l, "outline"), "outline: point 2 is not finite");
   l[2].y() = std::numeric_limits<double>::infinity();
   EXPECT_EQ(check_loop(l, "holes[3]"), "holes[3]: point 2 is not finite");
+  l[2].y() = 1e200;
+  EXPECT_EQ(check_loop(l, "outline"), "outline: point 2 is out of range (|coordinate| > 1e100 m)");
 }
 
 TEST(PolygonChecks, ZeroAreaAndRepeatedPoints) {
