@@ -44,6 +44,16 @@ bool in_box(const SceneDef& s, const Vec2& p, double tol) {
          (p.array() <= s.fixed_box_max.array() + tol).all();
 }
 
+bool in_extra_box(const Loop& box, const Vec2& p, double tol) {
+  return (p.array() >= box[0].array() - tol).all() && (p.array() <= box[1].array() + tol).all();
+}
+
+bool in_any_extra_box(const SceneDef& s, const Vec2& p, double tol) {
+  for (const Loop& box : s.fixed_boxes)
+    if (box.size() == 2 && in_extra_box(box, p, tol)) return true;
+  return false;
+}
+
 bool at_corner(FixedCorners set, const Box& b, const Vec2& p, double tol) {
   const bool left = near(p.x(), b.lo.x(), tol), right = near(p.x(), b.hi.x(), tol);
   const bool bottom = near(p.y(), b.lo.y(), tol), top = near(p.y(), b.hi.y(), tol);
@@ -63,7 +73,8 @@ std::vector<int> select_fixed_nodes(const SceneDef& s, const Mesh& mesh) {
   const bool use_box = !box_is_empty(s);
   for (int i = 0; i < mesh.node_count(); ++i) {
     const Vec2& p = mesh.rest[i];
-    if (at_corner(s.fixed_corners, bounds, p, tol) || (use_box && in_box(s, p, tol)))
+    if (at_corner(s.fixed_corners, bounds, p, tol) || (use_box && in_box(s, p, tol)) ||
+        in_any_extra_box(s, p, tol))
       nodes.push_back(i);
   }
   return nodes;
@@ -81,6 +92,19 @@ std::optional<SceneProblem> fixed_rule_problem(const SceneDef& s, const Mesh& me
                     s.fixed_box_max.y());
       return SceneProblem{"fixed.box_min", buf, {"fixed.box_max", "mesh.side", "mesh.n_seg"}};
     }
+  }
+  for (size_t k = 0; k < s.fixed_boxes.size(); ++k) {
+    const Loop& box = s.fixed_boxes[k];
+    const std::string which = "box " + std::to_string(k + 1);
+    if (box.size() != 2 || !box[0].allFinite() || !box[1].allFinite())
+      return SceneProblem{"fixed.boxes",
+                          which + ": expected [[x_min, y_min], [x_max, y_max]]", {}};
+    if ((box[0].array() > box[1].array()).any())
+      return SceneProblem{"fixed.boxes", which + ": its min corner is above or right of its max", {}};
+    const double tol = tolerance(rest_bounds(mesh));
+    if (std::none_of(mesh.rest.begin(), mesh.rest.end(),
+                     [&](const Vec2& p) { return in_extra_box(box, p, tol); }))
+      return SceneProblem{"fixed.boxes", which + " holds no node of the rest mesh", {"mesh.shape"}};
   }
   if (select_fixed_nodes(s, mesh).empty())
     return SceneProblem{"fixed.corners",

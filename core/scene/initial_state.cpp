@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -33,8 +34,7 @@ VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
     std::uint64_t state = scene.seed;
     // Each body's own edge length; the draws in node order, x then y, as for one body.
     for (size_t body = 0; body < mesh.body_begin.size(); ++body) {
-      const PlacedBody b = placed_body(scene, static_cast<int>(body));
-      const double amplitude = scene.jitter * b.side / b.n_seg;
+      const double amplitude = scene.jitter * body_edge_length(scene, static_cast<int>(body));
       const int end =
           body + 1 < mesh.body_begin.size() ? mesh.body_begin[body + 1] : mesh.node_count();
       for (int k = 2 * mesh.body_begin[body]; k < 2 * end; ++k)
@@ -122,8 +122,11 @@ std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
 }
 
 double estimated_memory_bytes(int n_seg) {
-  const double nodes = (double(n_seg) + 1.0) * (double(n_seg) + 1.0);
-  return nodes * 1024.0 * (1.0 + 0.25 * std::log2(nodes));
+  return estimated_memory_bytes_of_nodes((double(n_seg) + 1.0) * (double(n_seg) + 1.0));
+}
+
+double estimated_memory_bytes_of_nodes(double nodes) {
+  return nodes * 1024.0 * (1.0 + 0.25 * std::log2(std::max(nodes, 1.0)));
 }
 
 namespace {
@@ -145,11 +148,19 @@ std::string check_mesh_fits_in_memory(int n_seg) {
 }
 
 std::string check_mesh_fits_in_memory(const SceneDef& scene) {
-  if (scene.bodies.empty()) return check_mesh_fits_in_memory(scene.n_seg);
+  if (scene.bodies.empty() && scene.shape.kind == ShapeKind::Square)
+    return check_mesh_fits_in_memory(scene.n_seg);
+  // A meshed shape's nodes are known once it is meshed: find_scene_problem checks them
+  // (check_nodes_fit_in_memory) after the mesher, whose own cap comes first.
   double needed = 0.0;
   for (int b = 0; b < body_count(scene); ++b)
-    needed += estimated_memory_bytes(placed_body(scene, b).n_seg);
+    if (const PlacedBody body = placed_body(scene, b); body.shape.kind == ShapeKind::Square)
+      needed += estimated_memory_bytes(body.n_seg);
   return memory_verdict("these bodies", needed);
+}
+
+std::string check_nodes_fit_in_memory(double nodes) {
+  return memory_verdict("this mesh", estimated_memory_bytes_of_nodes(nodes));
 }
 
 }  // namespace invfree

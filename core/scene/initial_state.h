@@ -25,8 +25,10 @@ std::optional<SceneProblem> check_initial_state(const SceneDef& scene);
 // factor, whose fill grows like log N); this allows 1 kB * (1 + log2(N) / 4) per node,
 // about twice that.
 double estimated_memory_bytes(int n_seg);
+double estimated_memory_bytes_of_nodes(double nodes);  // any mesh's, by the same measure
 // "" or a reason (with both figures) when the estimate exceeds 80% of physical memory.
 std::string check_mesh_fits_in_memory(int n_seg);
+std::string check_nodes_fit_in_memory(double nodes);
 // The same for every body of a scene together.
 std::string check_mesh_fits_in_memory(const SceneDef& scene);
 

@@ -5,6 +5,8 @@
 
 #include "scene/initial_state.h"
 #include "scene/scene_fields.h"
+#include "shape/shape_mesh.h"
+#include "shape/shape_region.h"
 
 namespace invfree {
 
@@ -51,11 +53,27 @@ int body_count(const SceneDef& s) {
 }
 
 PlacedBody placed_body(const SceneDef& s, int body) {
-  PlacedBody b{s.side, s.n_seg, Vec2::Zero(), s.initial_velocity, s.lame};
+  PlacedBody b{s.side, s.n_seg, s.shape, Vec2::Zero(), s.initial_velocity, s.lame};
   if (s.bodies.empty()) return b;
   const BodyDef& d = s.bodies[body];
   b.side = d.side.value_or(s.side);
   b.n_seg = d.n_seg.value_or(s.n_seg);
+  ShapeDef& shape = b.shape;
+  shape.kind = d.shape.value_or(shape.kind);
+  shape.width = d.width.value_or(shape.width);
+  shape.height = d.height.value_or(shape.height);
+  shape.radius = d.radius.value_or(shape.radius);
+  shape.inner_radius = d.inner_radius.value_or(shape.inner_radius);
+  shape.scale = d.scale.value_or(shape.scale);
+  shape.max_edge = d.max_edge.value_or(shape.max_edge);
+  if (d.outline) shape.outline = *d.outline;
+  if (d.holes) shape.holes = *d.holes;
+  if (d.path_id) shape.path_id = *d.path_id;
+  // A body that names its own file (or path, or scale) carries what scene_io read from it.
+  if (d.file || d.path_id || d.scale) {
+    shape.file = d.file.value_or(shape.file);
+    shape.loaded = d.loaded;
+  }
   b.offset = d.offset;
   b.velocity = d.velocity.value_or(s.initial_velocity);
   b.lame = d.lame.value_or(s.lame);
@@ -64,7 +82,8 @@ PlacedBody placed_body(const SceneDef& s, int body) {
 
 double body_edge_length(const SceneDef& s, int body) {
   const PlacedBody b = placed_body(s, body);
-  return b.side / b.n_seg;
+  if (b.shape.kind == ShapeKind::Square) return b.side / b.n_seg;
+  return shape_max_edge(b.shape, b.n_seg);
 }
 
 void set_material_of_every_body(SceneDef& s, const Lame& lame) {
@@ -140,6 +159,37 @@ static std::optional<SceneProblem> find_body_problem(const SceneDef& s) {
   return std::nullopt;
 }
 
+// Each body's meshed shape (shape/shape_mesh.h): a file named where one is needed, then
+// the mesher's verdict on the outline, its holes, the file's contents and max_edge, under
+// "mesh.<key>" for the scene's one body and "body.<key>" for a [[body]].
+static std::optional<SceneProblem> find_shape_problem(const SceneDef& s) {
+  double nodes = 0.0;
+  for (int k = 0; k < body_count(s); ++k) {
+    const PlacedBody b = placed_body(s, k);
+    if (b.shape.kind == ShapeKind::Square) continue;
+    const std::string prefix = s.bodies.empty() ? "mesh." : "body.";
+    const std::string where = s.bodies.empty() ? "" : " (in [[body]] " + std::to_string(k + 1) + ")";
+    if ((b.shape.kind == ShapeKind::Svg || b.shape.kind == ShapeKind::MeshFile) &&
+        b.shape.file.empty())
+      return SceneProblem{prefix + "file",
+                          std::string("shape \"") + shape_kind_name(b.shape.kind) +
+                              "\" needs a file" + where,
+                          {prefix + "shape"}};
+    const ShapeMeshResult r = mesh_shape(b.shape, shape_max_edge(b.shape, b.n_seg));
+    if (!r.error.empty()) {
+      const size_t colon = r.error.find(": ");
+      std::string key = colon == std::string::npos ? "shape" : r.error.substr(0, colon);
+      key = key.substr(0, key.find('['));  // "holes[1]" is the key "holes"
+      return SceneProblem{prefix + key, r.error + where, {prefix + "shape"}};
+    }
+    nodes += r.mesh.node_count();
+  }
+  if (nodes > 0.0)
+    if (auto e = check_nodes_fit_in_memory(nodes); !e.empty())
+      return SceneProblem{"mesh.max_edge", e, {"mesh.n_seg"}};
+  return std::nullopt;
+}
+
 std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
   for (const SceneField& f : scene_fields())
     if (f.kept && (f.type == FieldType::Number || f.type == FieldType::Integer) &&
@@ -147,6 +197,7 @@ std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
       return SceneProblem{f.name(), f.bounds.requirement(), {}};
   if (auto problem = find_body_problem(s)) return problem;
   if (auto e = check_mesh_fits_in_memory(s); !e.empty()) return SceneProblem{"mesh.n_seg", e, {}};
+  if (auto problem = find_shape_problem(s)) return problem;
   if (!s.initial_velocity.allFinite())
     return SceneProblem{"initial.velocity", "must be finite", {}};
   if (!s.gravity.allFinite()) return SceneProblem{"gravity.g", "must be finite", {}};

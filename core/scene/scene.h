@@ -16,6 +16,7 @@
 #include "material/material.h"
 #include "enum_names.h"
 #include "scene/mesh.h"
+#include "shape/shape.h"
 
 namespace invfree {
 
@@ -57,12 +58,19 @@ std::optional<FixedCorners> fixed_corners_from_name(std::string_view name);
 inline constexpr EnumName<MassMode> kMassModeNames[] = {{MassMode::Uniform, "uniform"},
                                                         {MassMode::Lumped, "lumped"}};
 
-// [[body]]: one square of a scene with several bodies. An unset value takes the scene's:
-// [mesh] side and n_seg, [initial] velocity, [material]. The body's centre sits at
-// `offset` at rest (the scene's single square is centred at the origin).
+// [[body]]: one body of a scene with several bodies. An unset value takes the scene's:
+// [mesh] shape keys, side and n_seg, [initial] velocity, [material]. The body's own frame
+// (a square's or disk's centre, a polygon's origin) sits at `offset` at rest (the scene's
+// single body is at the origin).
 struct BodyDef {
   std::optional<double> side;
   std::optional<int> n_seg;
+  std::optional<ShapeKind> shape;
+  std::optional<double> width, height, radius, inner_radius, scale, max_edge;
+  std::optional<Loop> outline;
+  std::optional<std::vector<Loop>> holes;
+  std::optional<std::string> file, path_id;
+  ShapeFile loaded;  // from this body's `file` (scene_io); unused when it gives none
   Vec2 offset = Vec2::Zero();
   std::optional<Vec2> velocity;
   std::optional<Lame> lame;
@@ -73,6 +81,7 @@ struct BodyDef {
 struct PlacedBody {
   double side = 1.0;
   int n_seg = 4;
+  ShapeDef shape;  // the body's shape keys, its own or the scene's [mesh]
   Vec2 offset = Vec2::Zero();
   Vec2 velocity = Vec2::Zero();
   Lame lame;
@@ -87,6 +96,9 @@ struct SceneDef {
   MassMode mass = MassMode::Uniform;
   double jitter = 0.0;  // random initial node displacement, as a fraction of the edge length
   std::uint64_t seed = 1;
+  // [mesh] shape, width, height, radius, inner_radius, outline, holes, file, path_id, scale,
+  // max_edge: the body's shape (shape/shape.h); "square" is the side x n_seg grid.
+  ShapeDef shape;
   // [material]
   Model model = Model::NeoHookean;
   Lame lame = lame_from_young_poisson(1e5, 0.4);
@@ -130,6 +142,8 @@ struct SceneDef {
   FixedCorners fixed_corners = FixedCorners::None;
   Vec2 fixed_box_min = Vec2(1.0, 1.0);
   Vec2 fixed_box_max = Vec2(-1.0, -1.0);
+  // More boxes, each [[x_min, y_min], [x_max, y_max]] (a plate held at both ends).
+  std::vector<Loop> fixed_boxes;
   // The ground's normal (any slope; normalised where used): the plane passes through
   // (0, ground_y). (0, 1) is the horizontal ground.
   Vec2 ground_normal = Vec2(0.0, 1.0);
@@ -155,7 +169,9 @@ struct SceneDef {
 
 int body_count(const SceneDef& s);  // 1 without [[body]] tables
 PlacedBody placed_body(const SceneDef& s, int body);
-double body_edge_length(const SceneDef& s, int body);  // side / n_seg
+// The body's edge length: side / n_seg for the square, the target max_edge of any other
+// shape (shape/shape_mesh.h's shape_max_edge).
+double body_edge_length(const SceneDef& s, int body);
 // One material for every body (the live sliders): the scene's, and no body's own.
 void set_material_of_every_body(SceneDef& s, const Lame& lame);
 // The largest number of [[body]] tables a scene may list.

@@ -25,7 +25,10 @@ constexpr EnumName<FieldType> kFieldTypeNames[] = {{FieldType::Number, "number"}
                                                    {FieldType::Integer, "integer"},
                                                    {FieldType::Boolean, "boolean"},
                                                    {FieldType::Choice, "string"},
-                                                   {FieldType::Vector, "[x, y]"}};
+                                                   {FieldType::Vector, "[x, y]"},
+                                                   {FieldType::Text, "path"},
+                                                   {FieldType::Points, "[[x, y], ...]"},
+                                                   {FieldType::Loops, "[[[x, y], ...], ...]"}};
 
 // core/linalg/linear_solver_kind.h spells its kinds itself (linalg/ is below scene/); the
 // pairs are built from that spelling.
@@ -44,7 +47,8 @@ using MemberType = std::remove_cvref_t<decltype(std::declval<SceneDef&>().*F)>;
 template <auto F>
 FieldValue get_member(const SceneDef& s) {
   using T = MemberType<F>;
-  if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, double> || std::is_same_v<T, Vec2>)
+  if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, double> || std::is_same_v<T, Vec2> ||
+                std::is_same_v<T, std::vector<Loop>>)
     return s.*F;
   else if constexpr (std::is_unsigned_v<T>)
     return static_cast<unsigned long long>(s.*F);
@@ -147,6 +151,39 @@ constexpr SceneField material(const char* key, const char* unit, ValueBounds bou
           {},         get, nullptr,           In,   nullptr, kept};
 }
 
+// ---- a member of the scene's [mesh] shape (ShapeDef) -----------------------------------
+
+constexpr ValueBounds kShapeLength{0.0, kInf, true, false, false};  // > 0
+
+template <auto F>
+FieldValue get_shape(const SceneDef& s) {
+  return FieldValue(s.shape.*F);
+}
+
+template <auto F>
+std::string set_shape(SceneDef& s, const FieldValue& v) {
+  using T = std::remove_cvref_t<decltype(s.shape.*F)>;
+  s.shape.*F = std::get<T>(v);
+  return "";
+}
+
+template <auto F>
+constexpr SceneField shape_field(const char* key, FieldType type, const char* unit,
+                                 ValueBounds bounds, const char* doc) {
+  return {"mesh", key, type, unit, doc, bounds, true, {}, get_shape<F>, set_shape<F>};
+}
+
+FieldValue get_shape_kind(const SceneDef& s) {
+  return std::string(shape_kind_name(s.shape.kind));
+}
+
+std::string set_shape_kind(SceneDef& s, const FieldValue& v) {
+  const auto k = shape_kind_from_name(std::get<std::string>(v));
+  if (!k) return "unknown value";
+  s.shape.kind = *k;
+  return "";
+}
+
 // Changing the field needs a new mesh, masses or unknowns (needs_new_mesh).
 constexpr SceneField rebuilds(SceneField f) {
   f.new_mesh = true;
@@ -161,7 +198,7 @@ constexpr SceneField with_slider(SceneField f, SliderRange r) {
 // ---- the tables -----------------------------------------------------------------------
 
 constexpr SceneSection kSections[] = {
-    {"mesh", nullptr, "the square and its triangle mesh"},
+    {"mesh", nullptr, "the body's shape and its triangle mesh"},
     {"material", nullptr, "the elastic material: `E` and `nu`, or `mu` and `lambda`"},
     {"time", nullptr, "the time step and Newton's stopping rule"},
     {"solver", nullptr, "how each step's incremental potential is minimised"},
@@ -206,6 +243,30 @@ constexpr SceneField kFields[] = {
                                   "random initial node offset, as a fraction of the edge length")),
     rebuilds(integer<&SceneDef::seed>("mesh", "seed", kCount,
                                       "the jitter's pseudo-random seed (SplitMix64)")),
+    {"mesh", "shape", FieldType::Choice, "",
+     "the body's shape: the side x n_seg grid, or an outline meshed by CGAL (docs/shapes.md)",
+     kFinite, true, {}, get_shape_kind, set_shape_kind, nullptr, choice_at<kShapeKindNames>},
+    shape_field<&ShapeDef::width>("width", FieldType::Number, "m", kShapeLength,
+                                  "rectangle: its width"),
+    shape_field<&ShapeDef::height>("height", FieldType::Number, "m", kShapeLength,
+                                   "rectangle: its height"),
+    shape_field<&ShapeDef::radius>("radius", FieldType::Number, "m", kShapeLength,
+                                   "disk, ring: the outer radius"),
+    shape_field<&ShapeDef::inner_radius>("inner_radius", FieldType::Number, "m", kShapeLength,
+                                         "ring: the hole's radius (< radius)"),
+    shape_field<&ShapeDef::outline>("outline", FieldType::Points, "m", kFinite,
+                                    "polygon: its corners, either orientation"),
+    shape_field<&ShapeDef::holes>("holes", FieldType::Loops, "m", kFinite,
+                                  "polygon: holes, each a list of corners inside the outline"),
+    shape_field<&ShapeDef::file>("file", FieldType::Text, "",
+                                 kFinite, "svg, mesh: the file, relative to the scene file"),
+    shape_field<&ShapeDef::path_id>("path_id", FieldType::Text, "", kFinite,
+                                    "svg: the id of the one path to use (\"\": every closed path)"),
+    shape_field<&ShapeDef::scale>("scale", FieldType::Number, "m", kShapeLength,
+                                  "svg: metres per SVG user unit"),
+    shape_field<&ShapeDef::max_edge>("max_edge", FieldType::Number, "m", kNonNegative,
+                                     "target edge length of a meshed shape (0: the longer side "
+                                     "of its bounding box / n_seg)"),
     choice<&SceneDef::model, kModelNames>("material", "model", "the elastic energy density"),
     material<&MaterialInput::E>(
         "E", "Pa", kPositive, [](const SceneDef& s) { return FieldValue(youngs_modulus(s)); },
@@ -285,6 +346,9 @@ constexpr SceneField kFields[] = {
                                               "nodes whose rest position is in [box_min, box_max] "
                                               "are held fixed (min > max: no box)")),
     rebuilds(vector<&SceneDef::fixed_box_max>("fixed", "box_max", "m", "the box's upper corner")),
+    {"fixed", "boxes", FieldType::Loops, "m",
+     "more boxes, each [[x_min, y_min], [x_max, y_max]]: their nodes are held fixed too",
+     kFinite, true, {}, get_member<&SceneDef::fixed_boxes>, set_member<&SceneDef::fixed_boxes>},
     boolean<&SceneDef::has_self_contact>("self_contact", "enabled",
                                          "false switches self-contact off"),
     number<&SceneDef::self_friction>("self_contact", "friction", "", kNonNegative,
@@ -305,6 +369,8 @@ std::optional<FieldValue> get_body(const BodyDef& b) {
     if (!(b.*F)) return std::nullopt;
     if constexpr (std::is_same_v<T, std::optional<int>>)
       return FieldValue(static_cast<long long>(*(b.*F)));
+    else if constexpr (std::is_same_v<T, std::optional<ShapeKind>>)
+      return FieldValue(std::string(shape_kind_name(*(b.*F))));
     else
       return FieldValue(*(b.*F));
   }
@@ -317,6 +383,8 @@ void set_body(BodyDef& b, const FieldValue& v) {
     b.*F = std::get<Vec2>(v);
   else if constexpr (std::is_same_v<T, std::optional<int>>)
     b.*F = static_cast<int>(std::get<long long>(v));
+  else if constexpr (std::is_same_v<T, std::optional<ShapeKind>>)
+    b.*F = shape_kind_from_name(std::get<std::string>(v));  // the reader checked the name
   else
     b.*F = std::get<typename T::value_type>(v);
 }
@@ -336,8 +404,31 @@ constexpr BodyField kBodyFields[] = {
      "mesh.side", true, get_body<&BodyDef::side>, set_body<&BodyDef::side>},
     {"n_seg", FieldType::Integer, "", "segments per side (default: mesh.n_seg)", "mesh.n_seg", true,
      get_body<&BodyDef::n_seg>, set_body<&BodyDef::n_seg>},
-    {"offset", FieldType::Vector, "m", "the square's centre at rest", nullptr, true,
-     get_body<&BodyDef::offset>, set_body<&BodyDef::offset>},
+    {"shape", FieldType::Choice, "", "its shape (default: mesh.shape)", nullptr, true,
+     get_body<&BodyDef::shape>, set_body<&BodyDef::shape>, nullptr, choice_at<kShapeKindNames>},
+    {"width", FieldType::Number, "m", "rectangle: its width (default: mesh.width)", "mesh.width",
+     true, get_body<&BodyDef::width>, set_body<&BodyDef::width>},
+    {"height", FieldType::Number, "m", "rectangle: its height (default: mesh.height)",
+     "mesh.height", true, get_body<&BodyDef::height>, set_body<&BodyDef::height>},
+    {"radius", FieldType::Number, "m", "disk, ring: outer radius (default: mesh.radius)",
+     "mesh.radius", true, get_body<&BodyDef::radius>, set_body<&BodyDef::radius>},
+    {"inner_radius", FieldType::Number, "m", "ring: the hole's radius (default: mesh.inner_radius)",
+     "mesh.inner_radius", true, get_body<&BodyDef::inner_radius>,
+     set_body<&BodyDef::inner_radius>},
+    {"outline", FieldType::Points, "m", "polygon: its corners (default: mesh.outline)", nullptr,
+     true, get_body<&BodyDef::outline>, set_body<&BodyDef::outline>},
+    {"holes", FieldType::Loops, "m", "polygon: its holes (default: mesh.holes)", nullptr, true,
+     get_body<&BodyDef::holes>, set_body<&BodyDef::holes>},
+    {"file", FieldType::Text, "", "svg, mesh: its file, relative to the scene file", nullptr,
+     true, get_body<&BodyDef::file>, set_body<&BodyDef::file>},
+    {"path_id", FieldType::Text, "", "svg: the id of the one path to use", nullptr, true,
+     get_body<&BodyDef::path_id>, set_body<&BodyDef::path_id>},
+    {"scale", FieldType::Number, "m", "svg: metres per SVG user unit (default: mesh.scale)",
+     "mesh.scale", true, get_body<&BodyDef::scale>, set_body<&BodyDef::scale>},
+    {"max_edge", FieldType::Number, "m", "target edge length (default: mesh.max_edge)",
+     "mesh.max_edge", true, get_body<&BodyDef::max_edge>, set_body<&BodyDef::max_edge>},
+    {"offset", FieldType::Vector, "m", "where its own frame (a square's centre) sits at rest",
+     nullptr, true, get_body<&BodyDef::offset>, set_body<&BodyDef::offset>},
     {"velocity", FieldType::Vector, "m/s", "its velocity at t = 0 (default: initial.velocity)",
      nullptr, true, get_body<&BodyDef::velocity>, set_body<&BodyDef::velocity>},
     {"E", FieldType::Number, "Pa", "its own Young's modulus (default: [material])", "material.E",
@@ -438,6 +529,13 @@ std::string apply_material(SceneDef& s, const MaterialInput& in) {
     if (in.lambda) s.lame.lambda = *in.lambda;
   }
   return "";
+}
+
+std::vector<std::string> BodyField::choices() const {
+  std::vector<std::string> out;
+  if (choice)
+    for (std::size_t i = 0; choice(i); ++i) out.emplace_back(choice(i));
+  return out;
 }
 
 std::span<const BodyField> body_fields() {

@@ -22,12 +22,16 @@
 
 namespace invfree {
 
-enum class FieldType { Number, Integer, Boolean, Choice, Vector };
-const char* field_type_name(FieldType type);  // "number", "integer", "boolean", "string", "[x, y]"
+enum class FieldType { Number, Integer, Boolean, Choice, Vector, Text, Points, Loops };
+// "number", "integer", "boolean", "string", "[x, y]", "path" (a file's, relative to the scene
+// file), "[[x, y], ...]" (a polygon), "[[[x, y], ...], ...]" (polygons)
+const char* field_type_name(FieldType type);
 
 // A field's value: a Number's double, an Integer's long long (an unsigned field's unsigned
-// long long), a Boolean's bool, a Choice's name, a Vector's Vec2.
-using FieldValue = std::variant<double, long long, unsigned long long, bool, std::string, Vec2>;
+// long long), a Boolean's bool, a Choice's name or a Text, a Vector's Vec2, a Points' Loop,
+// Loops' loops.
+using FieldValue = std::variant<double, long long, unsigned long long, bool, std::string, Vec2,
+                                Loop, std::vector<Loop>>;
 double field_number(const FieldValue& v);  // a Number's or Integer's value as a double
 
 // E and nu, or mu and lambda, as read; apply_material turns them into the scene's Lame
@@ -96,6 +100,9 @@ struct BodyField {
   std::optional<FieldValue> (*get)(const BodyDef&);
   void (*set)(BodyDef&, const FieldValue&);  // nullptr for the material keys
   std::optional<double> MaterialInput::*input = nullptr;
+  const char* (*choice)(std::size_t i) = nullptr;  // a Choice's i-th name; nullptr after
+
+  std::vector<std::string> choices() const;
 };
 std::span<const BodyField> body_fields();
 const BodyField* find_body_field(std::string_view key);

@@ -2,23 +2,38 @@
 
 #include <algorithm>
 
+#include "scene/boundary.h"
+#include "shape/shape_mesh.h"
+#include "shape/shape_region.h"
+
 namespace invfree {
+
+Mesh body_mesh(const PlacedBody& b) {
+  if (b.shape.kind == ShapeKind::Square) return square_mesh(b.side, b.n_seg);
+  // find_scene_problem has meshed the shape already (the mesher caches its last results);
+  // a shape it refused never gets here.
+  return mesh_shape(b.shape, shape_max_edge(b.shape, b.n_seg)).mesh;
+}
 
 Mesh scene_mesh(const SceneDef& scene) {
   const int bodies = body_count(scene);
-  if (bodies == 1 && placed_body(scene, 0).offset == Vec2::Zero()) {
-    const PlacedBody b = placed_body(scene, 0);
-    return square_mesh(b.side, b.n_seg);
-  }
+  if (bodies == 1 && placed_body(scene, 0).offset == Vec2::Zero())
+    return body_mesh(placed_body(scene, 0));
   Mesh all;
   all.body_begin.clear();
   all.body_triangle_begin.clear();
   for (int k = 0; k < bodies; ++k) {
     const PlacedBody b = placed_body(scene, k);
     all.body_triangle_begin.push_back(all.triangle_count());
-    all.body_begin.push_back(append_body(all, square_mesh(b.side, b.n_seg), b.offset));
+    all.body_begin.push_back(append_body(all, body_mesh(b), b.offset));
   }
   return all;
+}
+
+bool scene_has_only_squares(const SceneDef& scene) {
+  for (int k = 0; k < body_count(scene); ++k)
+    if (placed_body(scene, k).shape.kind != ShapeKind::Square) return false;
+  return true;
 }
 
 int body_of_node(const Mesh& mesh, int node) {
@@ -59,6 +74,19 @@ std::vector<double> scene_node_masses(const SceneDef& scene, const Mesh& mesh) {
 
 std::vector<double> scene_node_contact_areas(const SceneDef& scene, const Mesh& mesh) {
   const int bodies = body_count(scene);
+  if (!scene_has_only_squares(scene)) {
+    // A meshed shape's boundary node stands for half of each of its two boundary edges (the
+    // square's side / n_seg on a grid); an interior node for none: it never reaches a plane
+    // before the boundary around it does. A square body keeps the tutorial's value.
+    std::vector<double> area(mesh.rest.size(), 0.0);
+    const Boundary boundary = find_boundary(mesh);
+    for (int k = 0; k < boundary.node_count(); ++k) area[boundary.nodes[k]] = boundary.node_area[k];
+    for (int k = 0; k < bodies; ++k)
+      if (placed_body(scene, k).shape.kind == ShapeKind::Square)
+        std::fill(area.begin() + mesh.body_begin[k], area.begin() + body_node_end(mesh, k),
+                  body_edge_length(scene, k));
+    return area;
+  }
   bool uniform = true;
   for (int k = 1; k < bodies; ++k)
     uniform = uniform && body_edge_length(scene, k) == body_edge_length(scene, 0);

@@ -1,5 +1,6 @@
 #include "scene_io/body_tables.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scene_io/did_you_mean.h"
@@ -42,6 +43,27 @@ std::string read_body_key(const BodyField& f, const toml::node& n, BodyInput& in
     const long long i = n.as_integer()->get();
     if (auto r = bounds_problem(f.stands_for, static_cast<double>(i)); !r.empty()) return r;
     value = i;
+  } else if (f.type == FieldType::Choice) {
+    if (!n.is_string()) return "expected a string, got " + toml_type_name(n);
+    const std::string text = n.as_string()->get();
+    const std::vector<std::string> choices = f.choices();
+    if (std::find(choices.begin(), choices.end(), text) == choices.end()) {
+      std::string list;
+      for (const auto& c : choices) list += (list.empty() ? "\"" : ", \"") + c + "\"";
+      return "unknown value " + invfree::quoted(text) + " (expected one of " + list + ")";
+    }
+    value = text;
+  } else if (f.type == FieldType::Text) {
+    if (!n.is_string()) return "expected a string, got " + toml_type_name(n);
+    value = n.as_string()->get();
+  } else if (f.type == FieldType::Points) {
+    Loop points;
+    if (auto r = read_points(n, points); !r.empty()) return r;
+    value = std::move(points);
+  } else if (f.type == FieldType::Loops) {
+    std::vector<Loop> loops;
+    if (auto r = read_loops(n, loops); !r.empty()) return r;
+    value = std::move(loops);
   } else {
     Vec2 u = Vec2::Zero();
     if (auto r = vec2_in(n, u); !r.empty()) return r;

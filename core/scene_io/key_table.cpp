@@ -18,6 +18,24 @@ constexpr EnumName<toml::node_type> kTomlTypeNames[] = {
     {toml::node_type::floating_point, "a number"}, {toml::node_type::boolean, "a boolean"}};
 }  // namespace
 
+std::string toml_string(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", u);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 std::string toml_type_name(const toml::node& n) {
   return enum_name(kTomlTypeNames, n.type(), "a date/time");
 }
@@ -70,6 +88,35 @@ std::string read_vec2(const toml::node& n, Vec2& out) {
   return "";
 }
 
+}  // namespace
+
+std::string read_points(const toml::node& n, Loop& out) {
+  const toml::array* a = n.as_array();
+  if (!a) return "expected an array of points, e.g. [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]";
+  out.clear();
+  out.reserve(a->size());
+  for (size_t k = 0; k < a->size(); ++k) {
+    Vec2 p = Vec2::Zero();
+    if (auto r = read_vec2(*a->get(k), p); !r.empty())
+      return "point " + std::to_string(k) + ": " +
+             (r.rfind("expected an array", 0) == 0 ? std::string("expected [x, y]") : r);
+    out.push_back(p);
+  }
+  return "";
+}
+
+std::string read_loops(const toml::node& n, std::vector<Loop>& out) {
+  const toml::array* a = n.as_array();
+  if (!a) return "expected an array of polygons, e.g. [[[0.1, 0.1], [0.2, 0.1], [0.1, 0.2]]]";
+  out.assign(a->size(), Loop{});
+  for (size_t k = 0; k < a->size(); ++k)
+    if (auto r = read_points(*a->get(k), out[k]); !r.empty())
+      return "polygon " + std::to_string(k) + ": " + r;
+  return "";
+}
+
+namespace {
+
 std::string choice_list(const std::vector<std::string>& choices) {
   std::string out;
   for (const auto& c : choices) out += (out.empty() ? "\"" : ", \"") + c + "\"";
@@ -102,6 +149,23 @@ std::string read_value(const SceneField& f, const toml::node& n, FieldValue& out
       Vec2 v = Vec2::Zero();
       r = read_vec2(n, v);
       out = v;
+      break;
+    }
+    case FieldType::Text: {
+      if (!n.is_string()) return "expected a string, got " + toml_type_name(n);
+      out = n.as_string()->get();
+      break;
+    }
+    case FieldType::Points: {
+      Loop v;
+      r = read_points(n, v);
+      out = std::move(v);
+      break;
+    }
+    case FieldType::Loops: {
+      std::vector<Loop> v;
+      r = read_loops(n, v);
+      out = std::move(v);
       break;
     }
     case FieldType::Choice: {
@@ -137,10 +201,23 @@ std::string value_text(const FieldValue& v) {
   if (const auto* i = std::get_if<long long>(&v)) return std::to_string(*i);
   if (const auto* u = std::get_if<unsigned long long>(&v)) return std::to_string(*u);
   if (const auto* b = std::get_if<bool>(&v)) return *b ? "true" : "false";
-  if (const auto* c = std::get_if<std::string>(&v)) {
-    std::string out(1, '"');  // (not "\"" + ...: GCC 12 warns falsely on that form)
-    out += *c;
-    out += '"';
+  if (const auto* c = std::get_if<std::string>(&v)) return toml_string(*c);
+  if (const auto* loop = std::get_if<Loop>(&v)) {
+    std::string out(1, '[');
+    for (size_t k = 0; k < loop->size(); ++k) {
+      if (k) out += ", ";
+      out += value_text(FieldValue((*loop)[k]));
+    }
+    out += ']';
+    return out;
+  }
+  if (const auto* loops = std::get_if<std::vector<Loop>>(&v)) {
+    std::string out(1, '[');
+    for (size_t k = 0; k < loops->size(); ++k) {
+      if (k) out += ", ";
+      out += value_text(FieldValue((*loops)[k]));
+    }
+    out += ']';
     return out;
   }
   const Vec2& u = std::get<Vec2>(v);

@@ -35,6 +35,11 @@ std::vector<std::string> section_names();
 
 // "a number", "a string", ...: what a value is, for errors.
 std::string toml_type_name(const toml::node& value);
+// A TOML basic string: quotes, backslashes and control characters escaped.
+std::string toml_string(std::string_view text);
+// An array of [x, y] into out (Points); an array of those (Loops); "" or the reason.
+std::string read_points(const toml::node& value, Loop& out);
+std::string read_loops(const toml::node& value, std::vector<Loop>& out);
 // A finite number (integer or float) into out; "" or the reason.
 std::string read_number(const toml::node& value, double& out);
 // "" when v is within the core's range for `key` ("mesh.side"), else the requirement.

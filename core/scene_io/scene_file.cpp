@@ -17,6 +17,7 @@
 #include "scene_io/did_you_mean.h"
 #include "scene_io/error_text.h"
 #include "scene_io/key_table.h"
+#include "scene_io/shape_files.h"
 #include "scene_io/toml_guard.h"
 
 namespace invfree {
@@ -72,25 +73,6 @@ Blame blame(const SceneProblem& p, Written written) {
 std::string located(const std::string& source, int line, const std::string& what) {
   const std::string where = printable(source, 200);
   return line > 0 ? where + ":" + std::to_string(line) + ": " + what : where + ": " + what;
-}
-
-// A TOML basic string: quotes, backslashes and control characters escaped.
-std::string toml_string(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (u < 0x20 || u == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", u);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 // An error and the line it is on (0: none); `what` is empty when there is none.
@@ -198,6 +180,8 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   int body_line = 0;
   if (auto r = scene_io::apply_body_materials(s, bodies, &body_line); !r.empty())
     return fail(body_line, r);
+  if (auto r = scene_io::load_shape_files(s, source); !r.empty())
+    return fail(line_of(r.substr(0, r.find(':'))), r);
   if (const auto problem = find_scene_problem(s)) {
     const Blame b = blame(*problem, [&](const std::string& key) { return lines.count(key) > 0; });
     return fail(line_of(b.key), b.message);
@@ -284,6 +268,10 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   if (auto r = apply_key(candidate, *spec, *parsed.get("v"), material); !r.empty())
     return where + ": " + lhs + ": " + r;
   if (auto r = apply_material(candidate, material); !r.empty()) return where + ": " + r;
+  // A new file, path, scale or shape is read now, relative to the current directory (the
+  // scene's own files were resolved when it was loaded).
+  if (section == "mesh" && (key == "file" || key == "path_id" || key == "scale" || key == "shape"))
+    if (auto r = scene_io::load_shape_files(candidate, "--set"); !r.empty()) return where + ": " + r;
   if (const auto problem = find_scene_problem(candidate))
     return where + ": " + blame(*problem, [&](const std::string& k) { return k == lhs; }).message;
   s = std::move(candidate);
@@ -293,7 +281,7 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
 std::string scene_to_toml(const SceneDef& s) {
   // Every key the scene keeps is written, and a switched-off term keeps its values under
   // `enabled = false`, so that parsing the text gives back exactly this scene.
-  std::string out = "name = " + toml_string(s.name) + "\n";
+  std::string out = "name = " + scene_io::toml_string(s.name) + "\n";
   for (const auto& section : scene_sections()) {
     out += "\n[" + std::string(section.name) + "]\n";
     for (const auto& k : scene_fields())
