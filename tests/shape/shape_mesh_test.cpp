@@ -322,7 +322,8 @@ TEST(ShapeMesh, SharpInputCornerStillEnds) {
 
 TEST(ShapeMesh, RunawayRefinementStopsWithAnError) {
   // 1000 m by 1 mm at max_edge 1 m: the area estimate is 5 triangles, but good angles in
-  // the strip need about two million; the step budget stops it in well under a second.
+  // the strip need about two million; the step budget stops it (0.7 s in release on a
+  // loaded 2-core machine, 8 s under AddressSanitizer: the bound only rules out a hang).
   ShapeDef s;
   s.kind = ShapeKind::Rectangle;
   s.width = 1000;
@@ -332,7 +333,7 @@ TEST(ShapeMesh, RunawayRefinementStopsWithAnError) {
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(r.error.rfind("max_edge: meshing stopped after ", 0), 0u) << r.error;
   EXPECT_EQ(r.mesh.triangle_count(), 0);
-  EXPECT_LT(secs, 5.0);
+  EXPECT_LT(secs, 60.0);
 }
 
 }  // namespace
