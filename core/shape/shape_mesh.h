@@ -20,11 +20,13 @@ struct ShapeMeshResult {
   std::string error;
 };
 
-// Every triangle's smallest angle is >= kMinAngleDegrees, except at an input corner
-// sharper than 60 degrees or between input features closer than about max_edge, where
-// Delaunay refinement cannot improve the angles the input forces. CGAL's shape bound
-// B = sin^2(smallest angle) is 0.125 (shape/triangulate.h), i.e. 20.705 degrees, the bound
-// under which Ruppert's refinement is proven to end; 20.7 is that, rounded down.
+// Every triangle's smallest angle is >= kMinAngleDegrees, except near an input corner
+// sharper than 60 degrees, where Delaunay refinement cannot improve the angles the input
+// forces (CGAL's clusters leave those triangles alone so that refinement ends). CGAL's
+// shape bound B = sin^2(smallest angle) is 0.125 (shape/triangulate.h), i.e. 20.705
+// degrees, the bound under which Ruppert's refinement is proven to end; 20.7 is that,
+// rounded down. Small input features cost triangles (refinement grades down to them),
+// not angles.
 constexpr double kMinAngleDegrees = 20.7;
 
 // The largest mesh mesh_shape builds. Refused before meshing when the estimate

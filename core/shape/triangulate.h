@@ -9,9 +9,9 @@
 //  - shape: sin^2 of every triangle's smallest angle is >= kShapeBound = 0.125 (CGAL's
 //    shape bound B is compared with (2 area)^2 / (l_max^2 l_mid^2) = sin^2 of the smallest
 //    angle, Delaunay_mesh_criteria_2.h), i.e. a smallest angle >= asin(sqrt(0.125)) =
-//    20.705 degrees, except in triangles at an input corner sharper than 60 degrees or
-//    between close input features, which Delaunay refinement cannot improve (CGAL's
-//    clusters leave such triangles alone so that refinement ends; Shewchuk 2002).
+//    20.705 degrees, except in triangles near an input corner sharper than 60 degrees,
+//    which Delaunay refinement cannot improve (CGAL's clusters leave such triangles
+//    alone so that refinement ends; Shewchuk 2002).
 // Boundary points may be added on the loops' edges (midpoints of split constraints); no
 // point is moved or dropped. Output is deterministic: the same loops and max_edge give the
 // same nodes and triangles bit for bit (points inserted one by one in loop order, no
