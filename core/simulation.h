@@ -55,8 +55,8 @@ struct Simulation {
   Mesh mesh;
   std::vector<double> node_mass;
   double ceiling_mass = 0.0;
-  // Only when the scene's bodies differ (scene/scene_mesh.h), otherwise empty: each node's
-  // plane-contact area, each triangle's material.
+  // Only when the scene's bodies differ or a body is a meshed shape (scene/scene_mesh.h),
+  // otherwise empty: each node's plane-contact area, each triangle's material.
   std::vector<double> node_contact_area;
   std::vector<Lame> triangle_lame;
   // State.

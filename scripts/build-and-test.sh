@@ -54,7 +54,7 @@ fi
 if [[ $stages == *,sanitize,* ]]; then
   stage "AddressSanitizer + UBSan: build and test"
   cmake --preset sanitize >/dev/null
-  cmake --build --preset sanitize --target invfree_tests invfree_reliability_tests \
+  cmake --build --preset sanitize --target invfree_tests invfree_reliability_tests invfree_shape_tests \
     invfree_scene_fuzz_replay
   ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

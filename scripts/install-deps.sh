@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libtomlplusplus-dev libcli11-dev          # core, scenes, command line
   libpugixml-dev                                          # SVG shape files (XML)
+  libcgal-dev                                             # meshing shapes (CGAL, GPL: see LICENSE)
   libgtest-dev libbenchmark-dev                           # tests, benchmarks
   libsuitesparse-dev libopenblas0-pthread                 # CHOLMOD direct solver
   libosmesa6-dev libglfw3-dev libimgui-dev libstb-dev     # offscreen and live rendering
