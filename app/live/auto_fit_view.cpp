@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "app/body_extent.h"
 namespace invfree::live {
 
 void AutoFitView::fit(const LiveController& lc, const render::PixelRect& visible, bool bodies) {
@@ -13,7 +14,8 @@ void AutoFitView::fit(const LiveController& lc, const render::PixelRect& visible
       b = {std::min(b.x0, x[i]), std::max(b.x1, x[i]), std::min(b.y0, x[i + 1]),
            std::max(b.y1, x[i + 1])};
     }
-    const double pad = 0.15 * std::max({b.x1 - b.x0, b.y1 - b.y0, 0.1 * lc.settings().side});
+    const double pad =
+        0.15 * std::max({b.x1 - b.x0, b.y1 - b.y0, 0.1 * scene_length_scale(lc.settings())});
     b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad};
   }
   auto_fit_ = true;

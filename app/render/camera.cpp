@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/body_extent.h"
+
 namespace invfree::render {
 
 FrameLayout frame_layout(int width, int height, PanelMode panel, double text_scale) {
@@ -22,35 +24,41 @@ FrameLayout frame_layout(int width, int height, PanelMode panel, double text_sca
 }
 
 WorldBox scene_world_box(const SceneDef& scene) {
-  // Every body's square at rest; `side` and `half` are the largest body's.
+  // Every body's rest bounding box (body_extent.h: a square's exactly as before shapes).
+  // `side` and `half` are the largest body's size and half width, `tall` its height.
   double bx0 = INFINITY, bx1 = -INFINITY, by0 = INFINITY, by1 = -INFINITY, side = 0.0;
-  double sides = 0.0;
+  double sides = 0.0, half = 0.0, tall = 0.0;
+  bool shaped = false;  // some body is not a square
   for (int k = 0; k < body_count(scene); ++k) {
-    const PlacedBody b = placed_body(scene, k);
-    bx0 = std::min(bx0, b.offset.x() - 0.5 * b.side);
-    bx1 = std::max(bx1, b.offset.x() + 0.5 * b.side);
-    by0 = std::min(by0, b.offset.y() - 0.5 * b.side);
-    by1 = std::max(by1, b.offset.y() + 0.5 * b.side);
-    side = std::max(side, b.side);
-    sides += b.side;
+    const BodyExtent b = body_rest_extent(scene, k);
+    bx0 = std::min(bx0, b.x0);
+    bx1 = std::max(bx1, b.x1);
+    by0 = std::min(by0, b.y0);
+    by1 = std::max(by1, b.y1);
+    side = std::max(side, b.size());
+    sides += b.width;
+    half = std::max(half, 0.5 * b.width);
+    tall = std::max(tall, b.height);
+    shaped = shaped || placed_body(scene, k).shape.kind != ShapeKind::Square;
   }
-  const double half = 0.5 * side;
   double y0 = by0, y1 = by1;
   if (scene.has_ground) y0 = std::min(y0, scene.ground_y);
   if (scene.has_ceiling) y1 = std::max(y1, scene.ceiling_y);
-  // Squashed between the planes down to the ceiling's stop gap, the square spreads
-  // sideways; at constant area it is side^2 / gap wide. Capped, for a stop at or
-  // below the ground.
+  // Squashed between the planes down to the ceiling's stop gap, a body spreads sideways;
+  // at constant area a square is side^2 / gap wide, a w x h box w h / gap. Capped, for a
+  // stop at or below the ground.
   double spread = 1.0;
   if (scene.has_ground && scene.has_ceiling) {
-    const double gap = std::max(scene.ceiling_stop - scene.ground_y, 0.25 * side);
-    spread = std::clamp(side / gap, 1.0, 4.0);
+    const double gap = std::max(scene.ceiling_stop - scene.ground_y, 0.25 * tall);
+    spread = std::clamp(tall / gap, 1.0, 4.0);
   }
   const double band = std::max(0.15 * (y1 - y0), 0.1 * side);  // visible plane depth
   // Several bodies may end side by side on the ground, squashed, on either side of where
   // they start (the stack's top square slides off the lower one): room for all of them.
-  const double margin =
-      (body_count(scene) > 1 ? sides * spread : half * (spread - 1.0)) + 0.15 * side;
+  // A square spreads evenly to both sides; a shape may spread to one side only (the
+  // c-shape's squashed arms flow out of its open side): room for all of it on either.
+  const double one_body = (shaped ? 2.0 * half : half) * (spread - 1.0);
+  const double margin = (body_count(scene) > 1 ? sides * spread : one_body) + 0.15 * side;
   double x0 = bx0 - margin, x1 = bx1 + margin;
   if (scene.has_ground && scene.ground_normal.x() != 0.0) {
     // A slope (the course's 4_friction): room for the body to slide one side length down

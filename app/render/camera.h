@@ -3,12 +3,15 @@
 // the text and the colour bar on the right, and a size scale for fonts and lines) and the
 // camera mapping world metres (y up) to pixels (origin top-left, y down).
 //
-// The camera is fixed per scene: it is derived from the scene definition only (side,
-// ground, ceiling start and stop), never from the moving state, so a movie never jumps.
-// The box it frames holds the square at rest, the ground, the ceiling's start, a band of
-// each plane, and the widest the square can get when squashed to the ceiling's stop gap
-// at constant area (det F <= 1 under compression). A body that leaves that box (a free
-// fall with no ground) leaves the picture.
+// The camera is fixed per scene: it is derived from the scene definition only (each
+// body's rest bounding box, app/body_extent.h; ground, ceiling start and stop), never from
+// the moving state, so a movie never jumps. The box it frames holds every body at rest,
+// the ground, the ceiling's start, a band of each plane, and the widest a body can get when
+// squashed to the ceiling's stop gap at constant area (det F <= 1 under compression; a
+// shape that is not a square may spread to one side only, so it gets that width on either
+// side). With no plane (plate-hole) the bodies get a margin of at least a tenth of the
+// largest one's size on every side. A body that leaves that box (a free fall with no
+// ground) leaves the picture.
 #pragma once
 
 #include "scene/scene.h"

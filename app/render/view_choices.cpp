@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/body_extent.h"
 #include "app/colormap.h"
 #include "enum_names.h"
 
@@ -88,7 +89,8 @@ WorldBox padded(const WorldBox& b, double pad) {
 Camera FollowCamera::next(const FrameState& state, const PixelRect& plot) {
   if (state.x.size() < 2) return last.value_or(Camera{});
   const WorldBox body = node_box(state.x);
-  const double size = std::max({body.x1 - body.x0, body.y1 - body.y0, 0.2 * state.scene.side});
+  const double size =
+      std::max({body.x1 - body.x0, body.y1 - body.y0, 0.2 * scene_length_scale(state.scene)});
   // Aim: the bodies with a third of their size around them (the planes show when near).
   const Camera target = fit_camera(padded(body, 0.35 * size), plot);
   Camera c = target;

@@ -296,6 +296,39 @@ TEST(RenderGolden, MassSpringScenesHaveNoStressToDraw) {
             render_state(sim, colored_by(TriangleField::Stress)).rgb);
 }
 
+// The shapes of issue 27, framed by their own extent (app/body_extent.h).
+TEST(RenderGolden, RingSquashedToTheStop) {
+  // The O-ring with the ceiling at its stop (step 250): flattened, the hole squeezed to a
+  // slit; intersection-free by the exact test, every triangle det F > 0, nothing cut off.
+  Simulation sim = make_simulation(scene("ring"));
+  run_to(sim, 250);
+  EXPECT_LE(sim.ceiling_y, sim.scene.ceiling_stop + 1e-3);
+  BroadPhaseGrid grid;
+  std::vector<std::array<int, 2>> scratch;
+  EXPECT_FALSE(find_self_intersection(find_boundary(sim.mesh), sim.x, grid, scratch));
+  EXPECT_GT(min_det_f(sim), 0.0);
+  expect_golden(sim, "ring_squashed");
+}
+
+TEST(RenderGolden, PlateHoleStressConcentration) {
+  // The plate pulled at both ends, settled (step 100): the largest principal stress at the
+  // hole's top and bottom edges is about three times the far field (Kirsch); the camera
+  // shows the whole 2 m plate.
+  Simulation sim = make_simulation(scene("plate-hole"));
+  run_to(sim, 100);
+  const auto stress = field_of(sim, TriangleField::Stress);
+  const auto at = [&](double x, double y) {
+    const std::optional<int> t = triangle_at(sim, Vec2(x, y));
+    EXPECT_TRUE(t.has_value()) << x << ", " << y;
+    return t ? stress[static_cast<size_t>(*t)] : 0.0;
+  };
+  const double far = at(0.0, 0.45), top = at(0.0, 0.165), bottom = at(0.0, -0.165);
+  EXPECT_GT(far, 0.0);
+  EXPECT_GT(top, 2.0 * far);
+  EXPECT_GT(bottom, 2.0 * far);
+  expect_golden(sim, "plate_hole_stress", colored_by(TriangleField::Stress));
+}
+
 TEST(RenderGolden, SameStateSamePixels) {
   // Nothing in the picture depends on the wall clock or on what was drawn before.
   Simulation a = make_simulation(scene("compress"));

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "app/body_extent.h"
 #include "app/colormap.h"
 #include "app/render/camera.h"
 #include "app/render/frame_text.h"
@@ -142,6 +143,55 @@ TEST(Camera, FixedPerSceneAndHoldsPlanesAndSquashedSquare) {
     EXPECT_LT((c.to_world(p) - corner).norm(), 1e-12);
   }
   EXPECT_NEAR(c.to_pixel(Vec2(0, 0)).x(), l.plot.x + 0.5 * l.plot.w, 1e-9);  // centred
+}
+
+// Each shape scene's camera holds its body's rest bounding box with room around it, the
+// planes it has, and (plate-hole: no ground, no ceiling) a margin on every side.
+TEST(Camera, FramesEveryShapeScenesBodyWithAMargin) {
+  for (const char* name : {"ring", "c-shape", "plate-hole", "bunny"}) {
+    SCOPED_TRACE(name);
+    const SceneLoad load = load_builtin_scene(name);
+    ASSERT_TRUE(load.scene) << load.error;
+    const SceneDef& s = *load.scene;
+    const BodyExtent b = body_rest_extent(s, 0);
+    ASSERT_GT(b.width, 0.0);
+    const WorldBox box = scene_world_box(s);
+    const double margin = 0.1 * b.size();
+    EXPECT_LE(box.x0, b.x0 - margin);
+    EXPECT_GE(box.x1, b.x1 + margin);
+    EXPECT_LE(box.y0, b.y0 - margin);
+    EXPECT_GE(box.y1, b.y1 + margin);
+    if (s.has_ground) {
+      EXPECT_LT(box.y0, s.ground_y);
+    }
+    if (s.has_ceiling) {
+      EXPECT_GT(box.y1, s.ceiling_y);
+    }
+  }
+  // The 2 m x 1 m plate: its own extent, not the [mesh] side's 1 m square.
+  const SceneDef plate = *load_builtin_scene("plate-hole").scene;
+  const BodyExtent e = body_rest_extent(plate, 0);
+  EXPECT_NEAR(e.width, 2.0, 0.02);
+  EXPECT_NEAR(e.height, 1.0, 0.02);
+  EXPECT_NEAR(scene_length_scale(plate), 2.0, 0.02);
+}
+
+// A square's extent is its offset +- side / 2, exactly as the camera computed it before
+// shapes (the goldens depend on it), and the length scale of a square scene is its side.
+TEST(Camera, ASquaresExtentIsItsSideExactly) {
+  SceneDef s = *load_builtin_scene("stack").scene;
+  for (int k = 0; k < body_count(s); ++k) {
+    const PlacedBody p = placed_body(s, k);
+    const BodyExtent b = body_rest_extent(s, k);
+    EXPECT_EQ(b.x0, p.offset.x() - 0.5 * p.side);
+    EXPECT_EQ(b.x1, p.offset.x() + 0.5 * p.side);
+    EXPECT_EQ(b.y0, p.offset.y() - 0.5 * p.side);
+    EXPECT_EQ(b.y1, p.offset.y() + 0.5 * p.side);
+    EXPECT_EQ(b.width, p.side);
+    EXPECT_EQ(b.height, p.side);
+  }
+  s.side = 0.7;
+  EXPECT_EQ(scene_length_scale(s), 0.7);
 }
 
 TEST(Camera, PanelOnTheRightOrNone) {
