@@ -6,7 +6,9 @@
 #   - Dear ImGui's sources (Debian's source package `imgui`, 1.86, the version of
 #     libimgui-dev, which ships headers and an x86 library only): unpacked with
 #     `apt-get source` into build/web-deps/ (outside git; nothing is copied into the
-#     repository). A deb-src entry for bookworm is added when apt has none, made from the
+#     repository). pugixml's sources the same way (Debian's source package `pugixml`, the
+#     version of libpugixml-dev, one .cpp) into build/web-deps/pugixml: the page reads the
+#     built-in scenes' SVG outlines with the desktop's code. A deb-src entry for bookworm is added when apt has none, made from the
 #     machine's own bookworm `deb` entry (same mirror, same signing key).
 # Run as root or through sudo (the unpacking runs as the calling user). Idempotent.
 set -euo pipefail
@@ -27,7 +29,8 @@ fi
 
 # deb-src for bookworm: copy the deb822 stanza (or one-line entry) that serves bookworm's
 # binary packages, as a source entry.
-if ! apt-cache showsrc imgui 2>/dev/null | grep -q '^Package: imgui'; then
+if ! apt-cache showsrc imgui 2>/dev/null | grep -q '^Package: imgui' ||
+  ! apt-cache showsrc pugixml 2>/dev/null | grep -q '^Package: pugixml'; then
   src=/etc/apt/sources.list.d/invfree-deb-src.sources
   entry=""
   for f in /etc/apt/sources.list.d/*.sources; do
@@ -82,4 +85,17 @@ if [ ! -f "$deps/imgui/imgui.cpp" ]; then
   mv "$dir" "$deps/imgui"
   rm -rf "$deps/unpack"
 fi
-echo "install-web-deps: emscripten $(dpkg-query -W -f='${Version}' emscripten), Dear ImGui sources in $deps/imgui"
+# pugixml's sources, the same way (the version of the desktop's libpugixml-dev).
+if [ ! -f "$deps/pugixml/src/pugixml.cpp" ]; then
+  mkdir -p "$deps"
+  rm -rf "$deps/unpack"
+  mkdir "$deps/unpack"
+  version=$(dpkg-query -W -f='${source:Version}' libpugixml-dev 2>/dev/null || true)
+  (cd "$deps/unpack" && apt-get source -qq "pugixml${version:+=$version}")
+  dir=$(find "$deps/unpack" -mindepth 1 -maxdepth 1 -type d -name 'pugixml-*' | head -n 1)
+  [ -f "$dir/src/pugixml.cpp" ] || { echo "install-web-deps: apt-get source pugixml gave no src/pugixml.cpp" >&2; exit 1; }
+  rm -rf "$deps/pugixml"
+  mv "$dir" "$deps/pugixml"
+  rm -rf "$deps/unpack"
+fi
+echo "install-web-deps: emscripten $(dpkg-query -W -f='${Version}' emscripten), Dear ImGui sources in $deps/imgui, pugixml sources in $deps/pugixml"

@@ -15,7 +15,8 @@
 // inspected triangle's values as `selected`, the panel's widget rectangles, note, banner), read
 // by the tests in a headless browser (tests/web) and by anyone curious in the browser's console.
 // Module._invfree_triangle_window_x/y(t) give a triangle's centroid in the page's pixels (for a
-// test's tap).
+// test's tap); Module._invfree_mesh_ms(repeats) times CGAL's mesher on the current scene's
+// shapes in the page (issue 27).
 #include <GLFW/glfw3.h>
 #include <emscripten.h>
 
@@ -32,6 +33,8 @@
 #include "linalg/parallel.h"
 #include "scene/scene.h"
 #include "scene_io/builtin_scenes.h"
+#include "shape/shape_region.h"
+#include "shape/triangulate.h"
 #include "triangle_fields.h"
 
 namespace {
@@ -318,6 +321,45 @@ extern "C" EMSCRIPTEN_KEEPALIVE double invfree_triangle_window_x(int t) {
 }
 extern "C" EMSCRIPTEN_KEEPALIVE double invfree_triangle_window_y(int t) {
   return triangle_window_coordinate(t, 1);
+}
+
+// Meshing time in the page (issue 27: CGAL's mesher runs in WebAssembly): each meshed
+// body of the current scene at its n_seg, region and triangulation (shape/shape_region.h,
+// shape/triangulate.h, what mesh_shape does, without its cache), `repeats` times. Returns
+// the milliseconds of one meshing of all of them (the median), -1 when no body is meshed
+// or meshing fails; invfree_mesh_triangles() then gives their triangle count. For
+// tests/web/measure_fps.py --scene and the web test's ring case.
+static long g_mesh_triangles = 0;
+extern "C" EMSCRIPTEN_KEEPALIVE double invfree_mesh_ms(int repeats) {
+  g_mesh_triangles = 0;
+  if (!g_page.app) return -1;
+  const invfree::SceneDef& scene = g_page.app->controller().simulation().scene;
+  std::vector<double> times;
+  for (int r = 0; r < std::max(repeats, 1); ++r) {
+    long triangles = 0;
+    const double start = emscripten_get_now();
+    for (int b = 0; b < invfree::body_count(scene); ++b) {
+      const invfree::PlacedBody body = invfree::placed_body(scene, b);
+      if (body.shape.kind == invfree::ShapeKind::Square ||
+          body.shape.kind == invfree::ShapeKind::MeshFile)
+        continue;
+      const double max_edge = invfree::shape_max_edge(body.shape, body.n_seg);
+      const invfree::ShapeRegion region = invfree::shape_region(body.shape, max_edge);
+      if (!region.error.empty()) return -1;
+      const invfree::Triangulation t =
+          invfree::triangulate_region(region.loops, max_edge, 10'000'000);
+      if (!t.error.empty()) return -1;
+      triangles += static_cast<long>(t.triangles.size());
+    }
+    times.push_back(emscripten_get_now() - start);
+    if (triangles == 0) return -1;
+    g_mesh_triangles = triangles;
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+extern "C" EMSCRIPTEN_KEEPALIVE double invfree_mesh_triangles() {
+  return static_cast<double>(g_mesh_triangles);
 }
 
 int main() {

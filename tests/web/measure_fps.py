@@ -17,6 +17,11 @@ one after the other on one core.
 (Module._invfree_triangle_window_x/y) inspects it, so the frames include the inspector's
 analysis, its window and the outline (issue 26's picking); the line then names the
 triangle.
+
+--scene NAME: that built-in scene instead of compress (issue 27's shapes: ring, c-shape,
+plate-hole, bunny). For a scene with a meshed shape the line also gives the page's
+meshing time at that n_seg: CGAL's mesher in WebAssembly (Module._invfree_mesh_ms, the
+median of 5 meshings of the scene's shapes, uncached) and the triangles it made.
 """
 
 import argparse
@@ -78,14 +83,22 @@ def select_middle_triangle(driver, state):
     return state["selected"]["triangle"]
 
 
-def measure(driver, url, n_seg, frames, select=False):
+def measure(driver, url, n_seg, frames, select=False, scene=""):
     driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
                            {"width": 1280, "height": 720, "deviceScaleFactor": 1, "mobile": False})
-    driver.get(f"{url}?n_seg={n_seg}")
+    driver.get(f"{url}?n_seg={n_seg}" + (f"&scene={scene}" if scene else ""))
     first = pd.wait_for(driver, lambda s: s["frames"] >= 1, "the first frame",
                         stop_on_console_error=True)
     if first["n_seg"] != n_seg:
         raise SystemExit(f"n_seg={n_seg} was not applied (page note: {first['note']})")
+    if scene and first["scene"] != scene:
+        raise SystemExit(f"scene={scene} was not picked (the page shows {first['scene']})")
+    mesh = None
+    if scene:
+        ms = driver.execute_script("return Module._invfree_mesh_ms(5);")
+        if ms >= 0:
+            mesh = (ms, int(driver.execute_script("return Module._invfree_mesh_triangles();")))
+        first = pd.page_state(driver)
     selected = None
     if select:
         if "selected" not in first:
@@ -100,7 +113,7 @@ def measure(driver, url, n_seg, frames, select=False):
     drawn = last["frames"] - first["frames"]
     if select and (last.get("selected") or {}).get("triangle") != selected:
         raise SystemExit(f"triangle {selected} was released while timing: {last.get('selected')}")
-    return drawn / seconds, 1e3 * cpu / drawn, last["step_ms"], last["steps"], selected
+    return drawn / seconds, 1e3 * cpu / drawn, last["step_ms"], last["steps"], selected, mesh
 
 
 def main():
@@ -109,6 +122,7 @@ def main():
     parser.add_argument("--frames", type=int, default=300)
     parser.add_argument("--select", action="store_true",
                         help="inspect the middle triangle (a click at its centroid) before timing")
+    parser.add_argument("--scene", default="", help="a built-in scene (default: compress)")
     parser.add_argument("n_seg", type=int, nargs="+")
     args = parser.parse_args()
     missing = pd.missing_toolchain(args.page_dir)
@@ -118,9 +132,11 @@ def main():
     driver = pd.open_browser()
     try:
         for n in args.n_seg:
-            fps, cpu_ms, step_ms, steps, selected = measure(driver, server.url, n, args.frames,
-                                                            args.select)
+            fps, cpu_ms, step_ms, steps, selected, mesh = measure(
+                driver, server.url, n, args.frames, args.select, args.scene)
             what = f", triangle {selected} inspected" if selected is not None else ""
+            if args.scene:
+                what = f" ({args.scene}" + (f", meshed in {mesh[0]:.1f} ms, {mesh[1]} triangles" if mesh else "") + ")" + what
             print(f"web fps: n_seg {n}{what}: {fps:.1f} frames/s, browser CPU {cpu_ms:.1f} ms/frame "
                   f"over {args.frames} frames ({steps} steps, {step_ms:.2f} ms/step), "
                   f"load average {os.getloadavg()[0]:.1f}", flush=True)
