@@ -4,7 +4,8 @@
 // scene file on disk finds its shape files on disk, relative to its own folder; a scene
 // embedded in the program (scene_io/builtin_scenes.h, source "assets/scenes/NAME.toml")
 // finds them among the files of assets/shapes/, embedded the same way, by their path
-// relative to assets/scenes/ ("../shapes/bunny.svg").
+// relative to assets/scenes/ ("../shapes/bunny.svg"); so does a scene on disk whose file is
+// not there (a built-in scene written out by scene_to_toml and read back elsewhere).
 #pragma once
 
 #include <cstdint>

@@ -138,7 +138,14 @@ TEST(ShapeFilesEmbedded, EmbeddedScenesReadTheEmbeddedAssets) {
   EXPECT_EQ(s.shape.loaded.fill_rule, FillRule::EvenOdd);
   s.shape.file = "../shapes/./../shapes/square-hole.svg";  // normalised
   EXPECT_EQ(load_shape_files(s, "assets/scenes/compress.toml"), "");
+  // A scene on disk that names an embedded asset not on its disk gets the embedded copy.
+  s.shape.file = "../shapes/square-hole.svg";
+  s.shape.loaded = {};
+  EXPECT_EQ(load_shape_files(s, "/nonexistent-folder/scenes/x.toml"), "");
+  EXPECT_EQ(s.shape.loaded.loops.size(), 2u);
   s.shape.file = "../shapes/none.svg";
+  EXPECT_EQ(load_shape_files(s, "/nonexistent-folder/scenes/x.toml"),
+            "mesh.file: cannot open '../shapes/none.svg' (No such file or directory)");
   EXPECT_EQ(load_shape_files(s, "assets/scenes/compress.toml"),
             "mesh.file: cannot open '../shapes/none.svg' (not among the files of assets/shapes/ "
             "embedded in the program)");
