@@ -6,7 +6,8 @@ downloads a PNG of what the page shows, a touch tap plays and pauses, and a clic
 on a triangle inspects it (issue 26: the selected triangle's values, its outline, the
 inspector's golden, the release on empty space, the values against `invfree inspect`),
 and a shape scene runs (issue 27: `ring`, meshed by CGAL in the page; its first frame's
-picture matches its golden, n_seg re-meshes it in the browser, and it drops and deforms).
+picture matches its golden, the n_seg slider and ?n_seg= re-mesh it in the browser, and it
+drops and deforms).
 
 Usage: web_page_test.py PAGE_DIR GOLDEN_DIR OUT_DIR [INVFREE]
   PAGE_DIR    the built page (build/web: index.html, index.js, index.wasm)
@@ -511,6 +512,17 @@ def test_ring(driver, url, golden_dir, out_dir):
     if meshed != start["triangles"]:
         fail(f"the page's mesher gave {meshed} triangles, the simulation has {start['triangles']}")
 
+    # The n_seg slider re-meshes the ring in the page (applied when it is released).
+    # (the rectangle holds the label too: the slider is its left two thirds)
+    click(driver, *centre(start["widgets"]["n_seg"], 0.45))
+    slid = pd.wait_for(driver, lambda s: s["n_seg"] != start["n_seg"], "n_seg to follow the slider")
+    slid = pd.wait_for(driver, lambda s: s["triangles"] != start["triangles"],
+                       f"the ring re-meshed at n_seg {slid['n_seg']}")
+    check_no_console_error(driver, "ring, n_seg slider")
+    if not (slid["n_seg"] > start["n_seg"] and slid["triangles"] > start["triangles"]):
+        fail(f"the n_seg slider: n_seg {start['n_seg']} -> {slid['n_seg']}, triangles "
+             f"{start['triangles']} -> {slid['triangles']} (note {slid['note']!r})")
+
     # A finer ring through n_seg (the URL's, applied like the slider's): re-meshed here.
     finer_n = start["n_seg"] * 2
     finer = load(driver, url + f"?scene=ring&paused=1&n_seg={finer_n}")
@@ -526,7 +538,8 @@ def test_ring(driver, url, golden_dir, out_dir):
     if not later["min_det_f"] > 0:
         fail(f"min det F {later['min_det_f']} after {later['steps']} steps")
     print(f"ring: {start['triangles']} triangles at n_seg {start['n_seg']}, meshed in the page in "
-          f"{ms:.1f} ms; n_seg {finer_n}: {finer['triangles']}; steps {first['steps']} -> "
+          f"{ms:.1f} ms; the slider to n_seg {slid['n_seg']}: {slid['triangles']}; "
+          f"n_seg {finer_n}: {finer['triangles']}; steps {first['steps']} -> "
           f"{later['steps']}, min det F {later['min_det_f']:.4f}, {later['fps']:.1f} frames/s")
 
 
