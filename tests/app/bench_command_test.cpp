@@ -2,6 +2,7 @@
 // reports the speed-up against the reference demo, and rejects bad sizes with one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -74,6 +75,35 @@ TEST(BenchCommand, WritesTheTableAndTheChart) {
   const std::string png = test::slurp(dir + "/bench.png");
   ASSERT_GT(png.size(), 1000u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
+  std::filesystem::remove_all(dir);
+}
+
+// A meshed shape (issue 27): the ring at three n_seg, each row with its meshing time
+// (mesh_ms, meshed cold: not the cache's copy) and finer meshes for larger n_seg.
+TEST(BenchCommand, ARingGetsItsMeshingTime) {
+  const std::string dir = ::testing::TempDir() + "/bench_ring_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  const test::ProcessResult r = test::run_invfree({"bench", "--scene", "ring", "--sizes", "8,16,32",
+                                                   "--steps", "3", "--out", dir, "--threads", "2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("mesh_ms"), std::string::npos) << r.out;
+  std::istringstream csv(test::slurp(dir + "/bench.csv"));
+  std::string header;
+  ASSERT_TRUE(std::getline(csv, header));
+  const auto columns = split(header, ',');
+  const auto col = std::find(columns.begin(), columns.end(), "mesh_ms") - columns.begin();
+  const auto tri = std::find(columns.begin(), columns.end(), "triangles") - columns.begin();
+  ASSERT_LT(col, static_cast<long>(columns.size()));
+  int last_triangles = 0;
+  int rows = 0;
+  for (std::string line; std::getline(csv, line); ++rows) {
+    const auto row = split(line, ',');
+    ASSERT_EQ(row.size(), columns.size());
+    EXPECT_GT(std::stod(row[col]), 0.0) << line;
+    EXPECT_GT(std::stoi(row[tri]), last_triangles) << line;
+    last_triangles = std::stoi(row[tri]);
+  }
+  EXPECT_EQ(rows, 3);
   std::filesystem::remove_all(dir);
 }
 
