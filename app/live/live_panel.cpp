@@ -9,11 +9,13 @@
 #include <cstring>
 #include <numeric>
 
+#include "app/body_extent.h"
 #include "app/live/course.h"
 #include "app/live/key_bindings.h"
 #include "app/live/log_slider.h"
 #include "app/live/param_limits.h"
 #include "app/live/plot_range.h"
+#include "app/live/scene_ideas.h"
 #include "app/render/frame_text.h"
 
 namespace invfree::live {
@@ -215,6 +217,8 @@ void scene_section(LiveController& lc, PanelState& ps) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the scene's own settings, from its initial state");
   if (const CourseChapter* c = course_chapter(scenes[sel].label); c && c->idea)
     ImGui::TextWrapped("Chapter %d: %s", c->chapter, c->idea);
+  else if (const char* idea = scene_idea(scenes[sel].label))
+    ImGui::TextWrapped("%s", idea);
 
   SceneDef next = lc.settings();
   const Model models[] = {Model::NeoHookean, Model::StableNeoHookean, Model::Arap, Model::Linear};
@@ -297,6 +301,27 @@ void material_section(LiveController& lc, PanelState& ps) {
   }
 }
 
+// What n_seg means for a scene's bodies: `any` when it sets some body's mesh (a square's
+// grid, or a meshed shape's default max_edge); `shape_edge`: the first such meshed shape's
+// max_edge at this n_seg (0 when no meshed shape reads n_seg).
+struct MeshedByNseg {
+  bool any = false;
+  double shape_edge = 0.0;
+};
+MeshedByNseg meshed_by_n_seg(const SceneDef& s) {
+  MeshedByNseg m;
+  for (int k = 0; k < body_count(s); ++k) {
+    const PlacedBody b = placed_body(s, k);
+    if (b.shape.kind == ShapeKind::Square) {
+      m.any = true;
+    } else if (b.shape.kind != ShapeKind::MeshFile && !(b.shape.max_edge > 0.0)) {
+      m.any = true;
+      if (m.shape_edge == 0.0) m.shape_edge = shape_max_edge(b.shape, b.n_seg);
+    }
+  }
+  return m;
+}
+
 void solver_section(LiveController& lc, PanelState& ps) {
   SceneDef next = lc.settings();
   if (clamped_slider(lc, ps, "h (s)", "h", &next.h, kTimeStepRange, "s", "%.4g", true))
@@ -309,12 +334,17 @@ void solver_section(LiveController& lc, PanelState& ps) {
                                                        "%d", ImGuiSliderFlags_AlwaysClamp);
                              });
 
-  // n_seg rebuilds the mesh: applied when the slider is released, not at every pixel.
+  // n_seg rebuilds the mesh: applied when the slider is released, not at every pixel. A
+  // meshed shape reads it as its default max_edge (the longer side / n_seg); a shape whose
+  // scene gives max_edge, or a mesh file, ignores it: the slider is then disabled.
+  const MeshedByNseg meshing = meshed_by_n_seg(next);
   int n = ps.n_seg_edit > 0 ? ps.n_seg_edit : next.n_seg;
   const int slider_max = std::max(ps.max_segments, kMinSegments + 1);
+  ImGui::BeginDisabled(!meshing.any);
   slider_with_readable_value(
       "n_seg (mesh)", float(n - kMinSegments) / float(slider_max - kMinSegments), std::to_string(n),
       [&] { return ImGui::SliderInt("n_seg (mesh)", &n, kMinSegments, slider_max, "%d"); });
+  ImGui::EndDisabled();
   remember(ps, "n_seg");
   if (ImGui::IsItemActive()) ps.n_seg_edit = n;
   if (ImGui::IsItemDeactivated()) {
@@ -327,6 +357,15 @@ void solver_section(LiveController& lc, PanelState& ps) {
       if (!c.note.empty())
         lc.note = c.note + " (the largest mesh measured to run at 30 frames/s here)";
     }
+  } else if (!meshing.any && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip(
+        "this scene's shape sets its own mesh (max_edge or a mesh file):\n"
+        "n_seg does not change it");
+  } else if (meshing.shape_edge > 0.0 && ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "a meshed shape: max_edge = its longer side / n_seg = %.3g m;\n"
+        "rebuilds the mesh and restarts when released (max %d)",
+        meshing.shape_edge, slider_max);
   } else if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip("rebuilds the mesh and restarts when released (max %d: still >= 30 frames/s)",
                       slider_max);
@@ -352,8 +391,8 @@ void contact_section(LiveController& lc, PanelState& ps) {
     apply(lc, next);
   }
   const SceneDef& original = lc.scenes()[lc.selected_scene()].scene;
-  const Range stop =
-      ceiling_stop_range(next.ground_y, next.has_ground, original.ceiling_y, next.side);
+  const Range stop = ceiling_stop_range(next.ground_y, next.has_ground, original.ceiling_y,
+                                        scene_length_scale(next));
   if (clamped_slider(lc, ps, "ceiling stop (m)", "ceiling stop", &next.ceiling_stop, stop, "m",
                      "%.3f", false))
     apply(lc, next);

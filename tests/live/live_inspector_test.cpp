@@ -185,6 +185,49 @@ TEST(LiveInspector, AClickAtATrianglesCentroidInspectsItWithTheCoresValues) {
   EXPECT_NE(in->analysis.F, expected.F);
 }
 
+// A meshed shape (issue 27): the ring, dropped and resting on the ground, paused. A click
+// at the centroid of a triangle in the ring's left wall inspects exactly that triangle with
+// the core's values; a click in the hole, inside the ring's outline but on no triangle,
+// selects nothing.
+TEST(LiveInspector, PicksATriangleOfTheMeshedRing) {
+  LiveOptions o;
+  o.scenes = {{"ring", *load_builtin_scene("ring").scene},
+              {"compress", *load_builtin_scene("compress").scene}};
+  o.paused = true;
+  o.vsync = false;
+  std::string error;
+  auto app = LiveApp::create(o, &error);
+  ASSERT_TRUE(app) << error;
+  for (int k = 0; k < 60; ++k) ASSERT_TRUE(app->controller().step_once());
+  show(*app);
+  const Simulation& sim = app->controller().simulation();
+  Vec2 lo = sim.x.segment<2>(0), hi = lo;
+  for (int i = 0; i < sim.mesh.node_count(); ++i) {
+    lo = lo.cwiseMin(sim.x.segment<2>(2 * i));
+    hi = hi.cwiseMax(sim.x.segment<2>(2 * i));
+  }
+  const Vec2 mid = 0.5 * (lo + hi);
+  // The wall is 0.2 m thick of the ring's 1 m: a tenth of the way in is inside it.
+  const std::optional<int> wall = triangle_at(sim, Vec2(lo.x() + 0.1 * (hi.x() - lo.x()), mid.y()));
+  ASSERT_TRUE(wall.has_value());
+  ASSERT_FALSE(triangle_at(sim, mid).has_value());  // the hole
+
+  click(*app, app->to_window(mid));
+  EXPECT_EQ(app->inspected(), nullptr);
+  click(*app, app->to_window(centroid(sim, *wall)));
+  const Inspected* in = app->inspected();
+  ASSERT_NE(in, nullptr);
+  EXPECT_EQ(in->triangle, *wall);
+  EXPECT_EQ(in->step, 60);
+  ASSERT_TRUE(in->elastic);
+  const StressAnalysis expected = analyze_triangle(sim, *wall);
+  EXPECT_EQ(in->analysis.F, expected.F);
+  EXPECT_EQ(in->analysis.J, expected.J);
+  EXPECT_EQ(in->analysis.cauchy, expected.cauchy);
+  EXPECT_EQ(in->analysis.eigenvalues, expected.eigenvalues);
+  EXPECT_GT(in->analysis.J, 0.0);
+}
+
 TEST(LiveInspector, EscReleasesThenQuits) {
   auto app = open_compress(0);
   ASSERT_TRUE(app);
