@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "app/body_extent.h"
 namespace invfree {
 
 long step_count(double duration, double h) {
@@ -32,7 +33,7 @@ Frame capture(const Simulation& sim) {
   f.has_ceiling = sim.scene.has_ceiling;
   f.ground_y = sim.scene.ground_y;
   f.ceiling_y = sim.ceiling_y;
-  f.side = sim.scene.side;
+  f.side = scene_length_scale(sim.scene);
   f.time = sim.time;
   return f;
 }

@@ -4,7 +4,8 @@
 // `invfree simulate --scene assets/scenes/stress-h0.1.toml` runs the very same scene.
 // They are run by path, not offered as built-in scene names. After them come the course's
 // scenes that teach something under stress (course-5-moving-dirichlet, the course's squash),
-// embedded like every built-in scene.
+// and a meshed shape (ring, the O-ring squashed: issue 27), embedded like every built-in
+// scene.
 #pragma once
 
 #include <optional>

@@ -8,6 +8,7 @@
 
 #include "app/format_number.h"
 #include "app/study/methods.h"
+#include "scene/scene_mesh.h"
 
 namespace invfree {
 
@@ -95,14 +96,25 @@ std::vector<size_t> pareto_front(const std::vector<double>& x, const std::vector
 
 namespace {
 
+// The error axis: relative to the square's side, or to a meshed shape's longer side.
+std::string error_label(const StudyResult& r) {
+  return scene_has_only_squares(r.scene) ? "RMS node-position error / side length"
+                                         : "RMS node-position error / body size";
+}
+
 // Error against wall time over the h sweep, with the Pareto front.
 ChartSpec speed_accuracy_panel(const StudyResult& r) {
   const std::string scene = r.scene.name;
   ChartSpec a;
-  a.title = "Speed against accuracy: " + scene + " (" + std::to_string(r.scene.n_seg) + "x" +
-            std::to_string(r.scene.n_seg) + " mesh), each point one time step h";
+  // A meshed shape (issue 27) has no n_seg x n_seg grid: its n_seg sets max_edge, and the
+  // error is relative to its longer side (app/body_extent.h's scene_length_scale).
+  const bool squares = scene_has_only_squares(r.scene);
+  const std::string n = std::to_string(r.scene.n_seg);
+  a.title = "Speed against accuracy: " + scene + " (" +
+            (squares ? n + "x" + n + " mesh" : "n_seg " + n + " meshed shape") +
+            "), each point one time step h";
   a.x_label = "wall-clock time per simulated second (s/s)";
-  a.y_label = "RMS node-position error / side length";
+  a.y_label = error_label(r);
   a.log_x = a.log_y = true;
   a.series = h_sweep_series(r, &StudyRow::wall_s);
   // One Pareto front per material model: a model's errors are measured against its own
@@ -170,7 +182,7 @@ ChartSpec convergence_panel(const StudyResult& r) {
             format_number(r.smooth_slope, "%.2f") + " (first order = 1); with contact " +
             format_number(r.lecture_slope, "%.2f");
   b.x_label = "time step h (s)";
-  b.y_label = "RMS node-position error / side length";
+  b.y_label = error_label(r);
   b.log_x = b.log_y = true;
   double h_min = INFINITY, h_max = 0.0, e_at_min = NAN;
   b.series = h_sweep_series(r, &StudyRow::h);
@@ -224,7 +236,7 @@ ChartSpec tolerance_panel(const StudyResult& r) {
   c.title =
       "Newton tolerance sweep at h = " + format_number(r.scene.h) + " s (" + r.scene.name + ")";
   c.x_label = "wall-clock time per simulated second (s/s)";
-  c.y_label = "RMS node-position error / side length";
+  c.y_label = error_label(r);
   c.log_x = c.log_y = true;
   std::string tols;
   for (const Method& m : study_methods()) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/body_extent.h"
 #include "app/format_number.h"
 #include "enum_names.h"
 #include "make_terms.h"
@@ -81,7 +82,7 @@ void RunMonitor::start(const Simulation& sim, double duration) {
   previous_ceiling = sim.ceiling_y;
   double mass = 0.0;
   for (double m : sim.node_mass) mass += m;
-  const double L = sim.scene.side;
+  const double L = scene_length_scale(sim.scene);
   minimum_budget = 1e-6 * mass * L * L;  // 1e-6 J per kg m^2 s^-2: far below any real motion
   Vec2 c = Vec2::Zero();
   for (int i = 0; i < sim.mesh.node_count(); ++i) c += sim.x.segment<2>(2 * i);
