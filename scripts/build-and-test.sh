@@ -11,7 +11,7 @@
 #      the heavy ones. The GL code (render, live, charts) and its tests run in release.
 #   4. where the web toolchain is installed (emcc, chromium and selenium, from
 #      scripts/install-web-deps.sh), the web page: scripts/install-web-deps.sh (fetches Dear
-#      ImGui's sources if missing), scripts/build-web.sh and its test in headless Chromium
+#      ImGui's and pugixml's sources if missing), scripts/build-web.sh and its test in headless Chromium
 #      (ctest -L web; docs/web.md): about 6 minutes on 2 cores. Elsewhere the web test
 #      reports itself skipped, saying why.
 # INVFREE_CI_STAGES picks stages (default "release,fuzz,sanitize", and "web" where its

@@ -177,10 +177,15 @@ static std::optional<SceneProblem> find_shape_problem(const SceneDef& s) {
                           {prefix + "shape"}};
     const ShapeMeshResult r = mesh_shape(b.shape, shape_max_edge(b.shape, b.n_seg));
     if (!r.error.empty()) {
+      // "outline: reason" -> key mesh.outline; "holes[1]: reason" keeps its "holes[1]: ",
+      // which says which hole.
       const size_t colon = r.error.find(": ");
       std::string key = colon == std::string::npos ? "shape" : r.error.substr(0, colon);
-      key = key.substr(0, key.find('['));  // "holes[1]" is the key "holes"
-      return SceneProblem{prefix + key, r.error + where, {prefix + "shape"}};
+      std::string reason = r.error;
+      if (key.find('[') == std::string::npos && colon != std::string::npos)
+        reason = r.error.substr(colon + 2);
+      key = key.substr(0, key.find('['));
+      return SceneProblem{prefix + key, reason + where, {prefix + "shape"}};
     }
     nodes += r.mesh.node_count();
   }

@@ -42,8 +42,10 @@ std::string quote_path(const std::string& path) {
   return q;
 }
 
-// The text of `file` (as the scene gives it) into text; "" or the reason.
-std::string read_shape_file(const std::string& file, const std::string& source, std::string& text) {
+// The text of `file` (as the scene gives it) into text, and the absolute path it was read
+// from into *resolved (unchanged for an embedded asset); "" or the reason.
+std::string read_shape_file(const std::string& file, const std::string& source, std::string& text,
+                            std::string* resolved) {
   // The embedded asset that `file`, relative to assets/scenes/, names.
   auto embedded = [&]() -> const EmbeddedShapeFile* {
     const std::string key =
@@ -91,20 +93,28 @@ std::string read_shape_file(const std::string& file, const std::string& source, 
   }
   if (in.bad()) return "cannot read " + quote_path(file);
   if (text.size() > kMaxShapeFileBytes) return too_large;
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(path, ec);
+  if (!ec) *resolved = absolute.lexically_normal().string();
   return "";
 }
 
-std::string load_one(ShapeKind kind, const std::string& file, const std::string& path_id,
-                     double scale, const std::string& source, ShapeFile& out) {
+// Reads and parses `file` into out; on success *resolved becomes the path it was read from
+// (so that a later --set, read from the current directory, finds the same file). "" or the
+// reason.
+std::string load_one(ShapeKind kind, std::string file, const std::string& path_id,
+                     double scale, const std::string& source, ShapeFile& out,
+                     std::string* resolved) {
   if (file.empty())
     return std::string("missing: shape = \"") + shape_kind_name(kind) + "\" needs a file";
-  std::string text;
-  if (auto e = read_shape_file(file, source, text); !e.empty()) return e;
+  std::string text, found = file;
+  if (auto e = read_shape_file(file, source, text, &found); !e.empty()) return e;
   ShapeFile loaded;
   if (auto e = parse_shape_text(kind, text, printable(file, 200), path_id, scale, loaded);
       !e.empty())
     return e;
   out = std::move(loaded);
+  *resolved = found;
   return "";
 }
 
@@ -133,19 +143,22 @@ std::string load_shape_files(SceneDef& scene, const std::string& source, int* bo
   for (const BodyDef& b : scene.bodies)
     scene_file_used = scene_file_used || (from_file(b.shape.value_or(own.kind)) && !b.file);
   if (from_file(own.kind) && scene_file_used)
-    if (auto e = load_one(own.kind, own.file, own.path_id, own.scale, source, scene.shape.loaded);
+    if (auto e = load_one(own.kind, own.file, own.path_id, own.scale, source, scene.shape.loaded,
+                          &scene.shape.file);
         !e.empty())
       return "mesh.file: " + e;
   for (std::size_t k = 0; k < scene.bodies.size(); ++k) {
     BodyDef& b = scene.bodies[k];
     const ShapeKind kind = b.shape.value_or(own.kind);
     if (!from_file(kind)) continue;
+    std::string resolved;
     if (auto e = load_one(kind, b.file.value_or(own.file), b.path_id.value_or(own.path_id),
-                          b.scale.value_or(own.scale), source, b.loaded);
+                          b.scale.value_or(own.scale), source, b.loaded, &resolved);
         !e.empty()) {
       if (body) *body = static_cast<int>(k);
       return "body.file: " + e + " (in [[body]] " + std::to_string(k + 1) + ")";
     }
+    if (b.file) b.file = resolved;
   }
   return "";
 }

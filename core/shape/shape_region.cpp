@@ -30,13 +30,24 @@ Loop oriented(const Loop& loop, bool ccw) {
   return out;
 }
 
+// A circle as a regular n-gon, n a multiple of 4 (circle_segments), its points at the odd
+// multiples of pi / n: a flat side at the bottom, so a disk rests on the ground instead of
+// balancing on a point, and mirror symmetry about both axes, exact (every quadrant mirrors
+// the first one's points).
 Loop circle(double r, int n, bool ccw) {
-  Loop loop(n);
-  for (int k = 0; k < n; ++k) {
-    const double t = 2 * std::numbers::pi * k / n;
-    loop[k] = Vec2(r * std::cos(t), r * std::sin(t));
+  const int q = n / 4;
+  std::vector<Vec2> first(q);
+  for (int k = 0; k < q; ++k) {
+    const double t = std::numbers::pi * (2 * k + 1) / n;
+    first[k] = Vec2(r * std::cos(t), r * std::sin(t));
   }
-  if (!ccw) std::reverse(loop.begin() + 1, loop.end());  // keeps point 0 at (r, 0)
+  Loop loop;
+  loop.reserve(n);
+  for (int k = 0; k < q; ++k) loop.push_back(first[k]);
+  for (int k = q - 1; k >= 0; --k) loop.push_back(Vec2(-first[k].x(), first[k].y()));
+  for (int k = 0; k < q; ++k) loop.push_back(Vec2(-first[k].x(), -first[k].y()));
+  for (int k = q - 1; k >= 0; --k) loop.push_back(Vec2(first[k].x(), -first[k].y()));
+  if (!ccw) std::reverse(loop.begin(), loop.end());
   return loop;
 }
 
@@ -93,10 +104,11 @@ double region_signed_area(const std::vector<RegionLoop>& loops) {
 }  // namespace
 
 int circle_segments(double r, double max_edge) {
-  // A chord of n segments is 2 r sin(pi/n) < 2 pi r / n <= max_edge.
+  // A chord of n segments is 2 r sin(pi/n) < 2 pi r / n <= max_edge; n rounded up to a
+  // multiple of 4 for circle()'s symmetry.
   const double n = std::ceil(2 * std::numbers::pi * r / max_edge);
   if (!(n < 1e8)) return 100'000'000;  // refused by the triangle cap before it is built
-  return std::max(12, static_cast<int>(n));
+  return (std::max(12, static_cast<int>(n)) + 3) / 4 * 4;
 }
 
 std::string validate_shape(const ShapeDef& shape) {

@@ -4,8 +4,9 @@
 // and holes clockwise, so that the region lies on the left of every loop.
 //  - rectangle: width x height, centred at the origin, four corners.
 //  - disk / ring: the circle(s) of radius (and inner_radius) about the origin as regular
-//    polygons whose points lie on the circle, n = max(12, ceil(2 pi r / max_edge))
-//    segments each, so every chord is <= max_edge. Area error: a regular n-gon inscribed in
+//    polygons whose points lie on the circle, n = max(12, ceil(2 pi r / max_edge)) segments
+//    rounded up to a multiple of 4 (a flat side at the bottom, mirror-symmetric about both
+//    axes), so every chord is <= max_edge. Area error: a regular n-gon inscribed in
 //    a circle of radius r has area (n/2) r^2 sin(2 pi / n), short of pi r^2 by a relative
 //    1 - sin(x)/x <= x^2/6 with x = 2 pi / n (its sagitta, the gap between chord and arc,
 //    is r (1 - cos(pi/n)) <= r (pi/n)^2 / 2); region_area_error_bound gives the sum over

@@ -4,7 +4,8 @@
 #include "shape/triangulate.h"
 
 #ifdef INVFREE_NO_CGAL
-// The web page's build (app/web) has no CGAL: meshing reports itself unavailable.
+// A build without CGAL (INVFREE_NO_CGAL) reports meshing unavailable; the web page compiles
+// CGAL too (app/web/CMakeLists.txt).
 namespace invfree {
 Triangulation triangulate_region(const std::vector<RegionLoop>&, double, long) {
   Triangulation out;

@@ -45,7 +45,7 @@ Triangulation triangulate_region(const std::vector<RegionLoop>& loops, double ma
                                  long max_steps);
 
 // Whether `loop` (>= 3 finite points) is a simple polygon: CGAL::is_simple_2, a sweep in
-// O(n log n) with exact predicates. nullopt in a build without CGAL (the web page).
+// O(n log n) with exact predicates. nullopt in a build without CGAL.
 std::optional<bool> loop_is_simple(const Loop& loop);
 
 }  // namespace invfree

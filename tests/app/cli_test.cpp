@@ -159,8 +159,8 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --steps", "--steps"},
       {"simulate --scene", "--scene"},
       {"simulate --scene ''",
-       ": no such file, and not a built-in scene (compress, course-1-mass-spring, "
-       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, "
+       ": no such file, and not a built-in scene (bunny, c-shape, compress, course-1-mass-spring, "
+       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, "
        "stack, stack-friction)"},
       {"simulate --scene comprss", "comprss: no such file, and not a built-in scene"},
       {"simulate --scene " + dir + "/subdir", dir + "/subdir: is a directory, not a scene file"},

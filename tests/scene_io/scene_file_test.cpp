@@ -48,8 +48,8 @@ TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
   }
   EXPECT_EQ(files, embedded.size());
   EXPECT_EQ(builtin_scene_names(),
-            "compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-            "course-4-friction, course-5-moving-dirichlet, drop, stack, stack-friction");
+            "bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
+            "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction");
 }
 
 // SceneDef's defaults are the reference demo (scene/scene.h): `compress` is the struct as
@@ -68,8 +68,8 @@ TEST(BuiltinScenes, CompressIsTheDefaultSceneAndDropItsVariant) {
   EXPECT_TRUE(*drop.scene == expected);
   EXPECT_EQ(
       load_builtin_scene("stress-h0.1").error,
-      "stress-h0.1: not a built-in scene (compress, course-1-mass-spring, course-2-dirichlet, "
-      "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, stack, "
+      "stress-h0.1: not a built-in scene (bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, "
+      "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, "
       "stack-friction)");
 }
 
@@ -177,9 +177,9 @@ TEST(SceneFiles, MissingFileAndUnknownName) {
   const SceneLoad load = load_scene("/nonexistent/scene.toml");
   ASSERT_FALSE(load.scene);
   EXPECT_EQ(load.error,
-            "/nonexistent/scene.toml: no such file, and not a built-in scene (compress, "
+            "/nonexistent/scene.toml: no such file, and not a built-in scene (bunny, c-shape, compress, "
             "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
-            "course-5-moving-dirichlet, drop, stack, stack-friction)");
+            "course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
 }
 
 TEST(Overrides, ApplyAndValidate) {
@@ -217,7 +217,7 @@ TEST(Overrides, ApplyAndValidate) {
 
 // The kind of value each key takes. The test fails when a key is added to the parser
 // without being listed here, so every key's wrong types stay covered.
-enum class Kind { Number, Integer, Enum, Bool, Vec2 };
+enum class Kind { Number, Integer, Enum, Bool, Vec2, Text, Points, Loops };
 const std::map<std::string, Kind>& key_kinds() {
   static const std::map<std::string, Kind> kinds = {
       {"mesh.side", Kind::Number},
@@ -226,6 +226,17 @@ const std::map<std::string, Kind>& key_kinds() {
       {"mesh.mass", Kind::Enum},
       {"mesh.jitter", Kind::Number},
       {"mesh.seed", Kind::Integer},
+      {"mesh.shape", Kind::Enum},
+      {"mesh.width", Kind::Number},
+      {"mesh.height", Kind::Number},
+      {"mesh.radius", Kind::Number},
+      {"mesh.inner_radius", Kind::Number},
+      {"mesh.outline", Kind::Points},
+      {"mesh.holes", Kind::Loops},
+      {"mesh.file", Kind::Text},
+      {"mesh.path_id", Kind::Text},
+      {"mesh.scale", Kind::Number},
+      {"mesh.max_edge", Kind::Number},
       {"material.model", Kind::Enum},
       {"material.E", Kind::Number},
       {"material.nu", Kind::Number},
@@ -260,6 +271,7 @@ const std::map<std::string, Kind>& key_kinds() {
       {"fixed.corners", Kind::Enum},
       {"fixed.box_min", Kind::Vec2},
       {"fixed.box_max", Kind::Vec2},
+      {"fixed.boxes", Kind::Loops},
       {"self_contact.enabled", Kind::Bool},
       {"self_contact.friction", Kind::Number},
       {"self_contact.ccd", Kind::Bool},
@@ -313,6 +325,22 @@ std::vector<WrongValue> wrong_values(Kind kind) {
               {"[1.0, nan]", "element 1: must be a finite number"},
               {"[[1.0], [2.0]]", "element 0: expected a number, got an array"},
               {"{ x = 1 }", "expected an array of two numbers"}};
+    case Kind::Text:
+      return {{"1", "expected a string, got an integer"},
+              {"true", "expected a string, got a boolean"},
+              {"[\"a\"]", "expected a string, got an array"}};
+    case Kind::Points:
+      return {{"1.0", "expected an array of points"},
+              {"\"x\"", "expected an array of points"},
+              {"[1.0, 2.0]", "point 0: expected [x, y]"},
+              {"[[1.0, 2.0], [1.0]]", "point 1: expected [x, y]"},
+              {"[[\"a\", 1.0]]", "point 0: element 0: expected a number, got a string"},
+              {"[[1.0, nan]]", "point 0: element 1: must be a finite number"}};
+    case Kind::Loops:
+      return {{"1.0", "expected an array of polygons"},
+              {"[1.0]", "polygon 0: expected an array of points"},
+              {"[[1.0, 2.0]]", "polygon 0: point 0: expected [x, y]"},
+              {"[[[0.0, 0.0]], [[1.0, inf]]]", "polygon 1: point 0: element 1: must be a finite number"}};
   }
   return {};
 }
@@ -667,9 +695,9 @@ TEST(BadInput, FilesThatAreNotScenes) {
   };
   expect_bad(dir + "/missing.toml",
              dir +
-                 "/missing.toml: no such file, and not a built-in scene (compress, "
+                 "/missing.toml: no such file, and not a built-in scene (bunny, c-shape, compress, "
                  "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
-                 "course-5-moving-dirichlet, drop, stack, stack-friction)");
+                 "course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
   expect_bad(dir + "/missing/deeper.toml", "no such file");
   expect_bad(dir, dir + ": is a directory, not a scene file");
   expect_bad(dir + "/binary.toml", dir + "/binary.toml: not a text file");
@@ -680,8 +708,8 @@ TEST(BadInput, FilesThatAreNotScenes) {
   expect_bad("", ": no such file");
   expect_bad("comprss",
              "comprss: no such file, and not a built-in scene (did you mean \"compress\"?) "
-             "(compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-             "course-4-friction, course-5-moving-dirichlet, drop, stack, stack-friction)");
+             "(bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
+             "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
   expect_bad(dir + "/empty.toml/x", "no such file");  // a file used as a directory
   // Unreadable: /proc/self/mem is a regular file that fails every read at offset 0.
   expect_bad("/proc/self/mem", "/proc/self/mem: could not read the file");

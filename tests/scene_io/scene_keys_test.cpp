@@ -132,6 +132,9 @@ TEST(SceneKeys, EveryChoiceReadsAndWritesBack) {
       if (k.section == "fixed") {  // a box holding a node: "none" then selects that one
         s.fixed_box_min = s.fixed_box_max = Vec2(-0.5, -0.5);
       }
+      // A polygon needs its outline; svg and mesh a file (tests/simulation/shape_scene_test).
+      if (k.key == "shape" && (c == "svg" || c == "mesh")) continue;
+      if (k.key == "shape") s.shape.outline = {Vec2(-0.5, -0.5), Vec2(0.5, -0.5), Vec2(0.0, 0.5)};
       EXPECT_EQ(apply_override(s, k.section + "." + k.key + "=" + c), "") << c;
       EXPECT_NE(scene_to_toml(s).find("\n" + k.key + " = \"" + c + "\"\n"), std::string::npos)
           << c << "\n"
@@ -147,8 +150,19 @@ FieldValue other_value(const SceneField& f, const FieldValue& v) {
   if (const auto* u = std::get_if<unsigned long long>(&v)) return static_cast<long long>(*u + 1);
   if (const auto* b = std::get_if<bool>(&v)) return !*b;
   if (const auto* c = std::get_if<std::string>(&v)) {
+    if (f.type == FieldType::Text) return *c + "x";
     for (const auto& name : f.choices())
       if (name != *c) return name;
+  }
+  if (const auto* loop = std::get_if<Loop>(&v)) {
+    Loop other = *loop;
+    other.push_back(Vec2(1.0, 2.0));
+    return other;
+  }
+  if (const auto* loops = std::get_if<std::vector<Loop>>(&v)) {
+    std::vector<Loop> other = *loops;
+    other.push_back(Loop{Vec2(1.0, 2.0)});
+    return other;
   }
   return Vec2(std::get<Vec2>(v) + Vec2(1.0, 1.0));
 }
@@ -170,11 +184,14 @@ TEST(SceneKeys, NeedsNewMeshIsTheTablesColumn) {
     EXPECT_EQ(needs_new_mesh(base, next), f.new_mesh) << f.name();
     if (f.new_mesh) rebuilding.insert(f.name());
   }
-  EXPECT_EQ(rebuilding, (std::set<std::string>{"mesh.side", "mesh.n_seg", "mesh.density",
-                                               "mesh.mass", "mesh.jitter", "mesh.seed",
-                                               "ceiling.enabled", "mass_spring.enabled",
-                                               "fixed.enabled", "fixed.corners", "fixed.box_min",
-                                               "fixed.box_max"}));
+  EXPECT_EQ(rebuilding,
+            (std::set<std::string>{
+                "mesh.side", "mesh.n_seg", "mesh.density", "mesh.mass", "mesh.jitter",
+                "mesh.seed", "mesh.shape", "mesh.width", "mesh.height", "mesh.radius",
+                "mesh.inner_radius", "mesh.outline", "mesh.holes", "mesh.file", "mesh.path_id",
+                "mesh.scale", "mesh.max_edge", "ceiling.enabled", "mass_spring.enabled",
+                "fixed.enabled", "fixed.corners", "fixed.box_min", "fixed.box_max",
+                "fixed.boxes"}));
   // [[body]]: a body more or fewer, or its square, place or velocity; not its material.
   SceneDef two = base;
   two.bodies = {BodyDef{}, BodyDef{}};
@@ -186,9 +203,14 @@ TEST(SceneKeys, NeedsNewMeshIsTheTablesColumn) {
   for (const BodyField& f : body_fields()) {
     if (!f.set) continue;
     changed = two;
-    f.set(changed.bodies[1], f.type == FieldType::Integer ? FieldValue(7LL)
-                             : f.type == FieldType::Number ? FieldValue(0.5)
-                                                           : FieldValue(Vec2(3.0, 1.0)));
+    FieldValue value = Vec2(3.0, 1.0);
+    if (f.type == FieldType::Integer) value = 7LL;
+    if (f.type == FieldType::Number) value = 0.5;
+    if (f.type == FieldType::Choice) value = f.choices().back();
+    if (f.type == FieldType::Text) value = std::string("x.svg");
+    if (f.type == FieldType::Points) value = Loop{Vec2(0.0, 0.0), Vec2(1.0, 0.0), Vec2(0.0, 1.0)};
+    if (f.type == FieldType::Loops) value = std::vector<Loop>{Loop{Vec2(0.1, 0.1)}};
+    f.set(changed.bodies[1], value);
     EXPECT_EQ(needs_new_mesh(two, changed), f.new_mesh) << f.key;
     EXPECT_TRUE(f.new_mesh) << f.key;
   }
