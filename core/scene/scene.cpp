@@ -185,7 +185,9 @@ static std::optional<SceneProblem> find_shape_problem(const SceneDef& s) {
       if (key.find('[') == std::string::npos && colon != std::string::npos)
         reason = r.error.substr(colon + 2);
       key = key.substr(0, key.find('['));
-      return SceneProblem{prefix + key, reason + where, {prefix + "shape"}};
+      // No causes: the message names the key at fault even when the user's last change
+      // was mesh.shape ("--set mesh.shape=polygon: mesh.outline: edges 0 and 2 cross").
+      return SceneProblem{prefix + key, reason + where, {}};
     }
     nodes += r.mesh.node_count();
   }

@@ -55,14 +55,13 @@ std::string read_shape_file(const std::string& file, const std::string& source, 
         if (e.path == key) return &e;
     return nullptr;
   };
-  if (is_embedded_scene(source)) {
+  // A built-in scene's source is "assets/scenes/NAME.toml", which is also that scene's
+  // path on disk from the repository's root: the embedded copy first, then the disk.
+  if (is_embedded_scene(source))
     if (const EmbeddedShapeFile* e = embedded()) {
       text = std::string(e->text);
       return "";
     }
-    return "cannot open " + quote_path(file) +
-           " (not among the files of assets/shapes/ embedded in the program)";
-  }
   const fs::path dir = fs::path(source).parent_path();
   const fs::path path = fs::path(file).is_absolute() || dir.empty() ? fs::path(file) : dir / file;
   struct stat st {};

@@ -57,6 +57,25 @@ TEST(Cli, SimulateWritesCsvAndObj) {
   EXPECT_NE(slurp(dir + "/obj/0.obj").find("f 1 6 7\n"), std::string::npos);  // 1-based
 }
 
+TEST(Cli, AShapeAndItsKeysInAnyOrder) {
+  // mesh.shape is applied after the keys it reads, so either order of --set works.
+  const std::string outline =
+      " --set 'mesh.outline=[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]'";
+  for (const std::string& args :
+       {"simulate --steps 2 --set mesh.shape=polygon" + outline,
+        "simulate --steps 2" + outline + " --set mesh.shape=polygon"}) {
+    const CommandResult r = run(args);
+    EXPECT_EQ(r.code, 0) << args << "\n" << r.err;
+    EXPECT_NE(r.out.find("compress: 2 steps"), std::string::npos) << r.out;
+  }
+  // A bad shape: one line naming the key, exit 2.
+  const CommandResult bad =
+      run("simulate --steps 2 --set mesh.shape=polygon --set 'mesh.outline=[[0, 0], [1, 1], [1, 0], [0, 1]]'");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("mesh.outline: "), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
 TEST(Cli, BadInputExitsTwoWithOneLine) {
   const std::string dir = ::testing::TempDir();
   { std::ofstream(dir + "/bad_nu.toml") << "[material]\nE = 1e5\nnu = 0.7\n"; }

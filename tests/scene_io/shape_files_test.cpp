@@ -146,9 +146,10 @@ TEST(ShapeFilesEmbedded, EmbeddedScenesReadTheEmbeddedAssets) {
   s.shape.file = "../shapes/none.svg";
   EXPECT_EQ(load_shape_files(s, "/nonexistent-folder/scenes/x.toml"),
             "mesh.file: cannot open '../shapes/none.svg' (No such file or directory)");
+  // A built-in scene's source is also its path on disk from the repository's root: a file
+  // not embedded is looked for there.
   EXPECT_EQ(load_shape_files(s, "assets/scenes/compress.toml"),
-            "mesh.file: cannot open '../shapes/none.svg' (not among the files of assets/shapes/ "
-            "embedded in the program)");
+            "mesh.file: cannot open '../shapes/none.svg' (No such file or directory)");
 }
 
 }  // namespace
