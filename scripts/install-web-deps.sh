@@ -70,32 +70,26 @@ if ! apt-cache showsrc imgui 2>/dev/null | grep -q '^Package: imgui' ||
   $SUDO apt-get update -qq
 fi
 
-# Dear ImGui's sources (Debian's patches applied), unpacked once.
+# Sources the page compiles itself (Debian's patches applied), unpacked once into
+# build/web-deps/NAME: the source package of the -dev package the desktop build uses (same
+# headers, same version when that is installed).
 deps=build/web-deps
-if [ ! -f "$deps/imgui/imgui.cpp" ]; then
+unpack_source() {  # NAME (source package and folder), DEV_PACKAGE, a file the tree must have
+  local name=$1 dev=$2 check=$3
+  [ -f "$deps/$name/$check" ] && return 0
   mkdir -p "$deps"
   rm -rf "$deps/unpack"
   mkdir "$deps/unpack"
-  # The source of the libimgui-dev the desktop build uses (same headers), when installed.
-  version=$(dpkg-query -W -f='${source:Version}' libimgui-dev 2>/dev/null || true)
-  (cd "$deps/unpack" && apt-get source -qq "imgui${version:+=$version}")
-  dir=$(find "$deps/unpack" -mindepth 1 -maxdepth 1 -type d -name 'imgui-*' | head -n 1)
-  [ -f "$dir/imgui.cpp" ] || { echo "install-web-deps: apt-get source imgui gave no imgui.cpp" >&2; exit 1; }
-  rm -rf "$deps/imgui"
-  mv "$dir" "$deps/imgui"
+  local version
+  version=$(dpkg-query -W -f='${source:Version}' "$dev" 2>/dev/null || true)
+  (cd "$deps/unpack" && apt-get source -qq "$name${version:+=$version}")
+  local dir
+  dir=$(find "$deps/unpack" -mindepth 1 -maxdepth 1 -type d -name "$name-*" | head -n 1)
+  [ -f "$dir/$check" ] || { echo "install-web-deps: apt-get source $name gave no $check" >&2; exit 1; }
+  rm -rf "$deps/$name"
+  mv "$dir" "$deps/$name"
   rm -rf "$deps/unpack"
-fi
-# pugixml's sources, the same way (the version of the desktop's libpugixml-dev).
-if [ ! -f "$deps/pugixml/src/pugixml.cpp" ]; then
-  mkdir -p "$deps"
-  rm -rf "$deps/unpack"
-  mkdir "$deps/unpack"
-  version=$(dpkg-query -W -f='${source:Version}' libpugixml-dev 2>/dev/null || true)
-  (cd "$deps/unpack" && apt-get source -qq "pugixml${version:+=$version}")
-  dir=$(find "$deps/unpack" -mindepth 1 -maxdepth 1 -type d -name 'pugixml-*' | head -n 1)
-  [ -f "$dir/src/pugixml.cpp" ] || { echo "install-web-deps: apt-get source pugixml gave no src/pugixml.cpp" >&2; exit 1; }
-  rm -rf "$deps/pugixml"
-  mv "$dir" "$deps/pugixml"
-  rm -rf "$deps/unpack"
-fi
+}
+unpack_source imgui libimgui-dev imgui.cpp
+unpack_source pugixml libpugixml-dev src/pugixml.cpp
 echo "install-web-deps: emscripten $(dpkg-query -W -f='${Version}' emscripten), Dear ImGui sources in $deps/imgui, pugixml sources in $deps/pugixml"

@@ -97,10 +97,10 @@ std::optional<SceneProblem> fixed_rule_problem(const SceneDef& s, const Mesh& me
     const Loop& box = s.fixed_boxes[k];
     const std::string which = "box " + std::to_string(k + 1);
     if (box.size() != 2 || !box[0].allFinite() || !box[1].allFinite())
-      return SceneProblem{"fixed.boxes",
-                          which + ": expected [[x_min, y_min], [x_max, y_max]]", {}};
+      return SceneProblem{"fixed.boxes", which + ": expected [[x_min, y_min], [x_max, y_max]]", {}};
     if ((box[0].array() > box[1].array()).any())
-      return SceneProblem{"fixed.boxes", which + ": its min corner is above or right of its max", {}};
+      return SceneProblem{
+          "fixed.boxes", which + ": its min corner is above or right of its max", {}};
     const double tol = tolerance(rest_bounds(mesh));
     if (std::none_of(mesh.rest.begin(), mesh.rest.end(),
                      [&](const Vec2& p) { return in_extra_box(box, p, tol); }))

@@ -1,8 +1,8 @@
 // Fixed nodes (Dirichlet boundary conditions) chosen by rules in rest space, so that the
 // same rule holds the same places at any n_seg: the named corners of the bounding box of
 // all rest nodes (e.g. "top": top-left and top-right, the tutorial's 2_dirichlet), and
-// every node whose rest position lies in [box_min, box_max] or in one of `boxes`. The solver eliminates their
-// degrees of freedom (potential/fixed_dofs.h); they keep their initial positions.
+// every node whose rest position lies in [box_min, box_max] or in one of `boxes`. The solver
+// eliminates their degrees of freedom (potential/fixed_dofs.h); they keep their initial positions.
 // Inputs: the scene's [fixed] rule and the mesh. Output: node indices, ascending.
 #pragma once
 

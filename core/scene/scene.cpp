@@ -152,9 +152,8 @@ static std::optional<SceneProblem> find_body_problem(const SceneDef& s) {
         if (!b->contains(field_number(*v))) why = b->requirement();
       }
       if (!why.empty())
-        return SceneProblem{std::string("body.") + f.key,
-                            why + " (in [[body]] " + std::to_string(k + 1) + ")",
-                            {}};
+        return SceneProblem{
+            std::string("body.") + f.key, why + " (in [[body]] " + std::to_string(k + 1) + ")", {}};
     }
   return std::nullopt;
 }
@@ -168,13 +167,14 @@ static std::optional<SceneProblem> find_shape_problem(const SceneDef& s) {
     const PlacedBody b = placed_body(s, k);
     if (b.shape.kind == ShapeKind::Square) continue;
     const std::string prefix = s.bodies.empty() ? "mesh." : "body.";
-    const std::string where = s.bodies.empty() ? "" : " (in [[body]] " + std::to_string(k + 1) + ")";
+    const std::string where =
+        s.bodies.empty() ? "" : " (in [[body]] " + std::to_string(k + 1) + ")";
     if ((b.shape.kind == ShapeKind::Svg || b.shape.kind == ShapeKind::MeshFile) &&
         b.shape.file.empty())
-      return SceneProblem{prefix + "file",
-                          std::string("shape \"") + shape_kind_name(b.shape.kind) +
-                              "\" needs a file" + where,
-                          {prefix + "shape"}};
+      return SceneProblem{
+          prefix + "file",
+          std::string("shape \"") + shape_kind_name(b.shape.kind) + "\" needs a file" + where,
+          {prefix + "shape"}};
     const ShapeMeshResult r = mesh_shape(b.shape, shape_max_edge(b.shape, b.n_seg));
     if (!r.error.empty()) {
       // "outline: reason" -> key mesh.outline; "holes[1]: reason" keeps its "holes[1]: ",

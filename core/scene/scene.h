@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include "enum_names.h"
 #include "linalg/linear_solver_kind.h"
 #include "material/material.h"
-#include "enum_names.h"
 #include "scene/mesh.h"
 #include "shape/shape.h"
 
@@ -22,7 +22,8 @@ namespace invfree {
 
 enum class Integrator { ImplicitEuler, SymplecticEuler };
 inline constexpr EnumName<Integrator> kIntegratorNames[] = {
-    {Integrator::ImplicitEuler, "implicit-euler"}, {Integrator::SymplecticEuler, "symplectic-euler"}};
+    {Integrator::ImplicitEuler, "implicit-euler"},
+    {Integrator::SymplecticEuler, "symplectic-euler"}};
 const char* integrator_name(Integrator i);
 std::optional<Integrator> integrator_from_name(std::string_view name);
 

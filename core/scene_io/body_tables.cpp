@@ -162,8 +162,8 @@ std::vector<SceneKeyInfo> body_key_info() {
   std::vector<SceneKeyInfo> out;
   for (const auto& f : body_fields()) {
     const auto v = f.get ? f.get(defaults) : std::nullopt;
-    SceneKeyInfo info{"body", f.key, field_type_name(f.type), f.unit, "", {},
-                      v ? scene_io::value_text(*v) : "", f.doc};
+    SceneKeyInfo info{"body", f.key, field_type_name(f.type),           f.unit,
+                      "",     {},    v ? scene_io::value_text(*v) : "", f.doc};
     if (const ValueBounds* b = f.stands_for ? find_value_bounds(f.stands_for) : nullptr)
       info.range = b->range();
     out.push_back(std::move(info));

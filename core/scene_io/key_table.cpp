@@ -13,8 +13,8 @@ namespace invfree::scene_io {
 
 namespace {
 constexpr EnumName<toml::node_type> kTomlTypeNames[] = {
-    {toml::node_type::table, "a table"},     {toml::node_type::array, "an array"},
-    {toml::node_type::string, "a string"},   {toml::node_type::integer, "an integer"},
+    {toml::node_type::table, "a table"},           {toml::node_type::array, "an array"},
+    {toml::node_type::string, "a string"},         {toml::node_type::integer, "an integer"},
     {toml::node_type::floating_point, "a number"}, {toml::node_type::boolean, "a boolean"}};
 }  // namespace
 
@@ -283,8 +283,14 @@ std::vector<SceneKeyInfo> scene_key_info() {
   const SceneDef defaults;
   std::vector<SceneKeyInfo> out;
   for (const auto& f : scene_fields()) {
-    SceneKeyInfo info{f.section,   f.key, field_type_name(f.type), f.unit, "", f.choices(),
-                      scene_io::write_field(f, defaults), f.doc};
+    SceneKeyInfo info{f.section,
+                      f.key,
+                      field_type_name(f.type),
+                      f.unit,
+                      "",
+                      f.choices(),
+                      scene_io::write_field(f, defaults),
+                      f.doc};
     if (const ValueBounds* b = find_value_bounds(f.name())) info.range = b->range();
     out.push_back(std::move(info));
   }

@@ -24,7 +24,6 @@ namespace invfree {
 
 namespace {
 
-
 // Scene files larger than this are certainly not scenes (the built-in ones are < 1 kB);
 // refusing them keeps `--scene /dev/zero` or a stray video from eating memory.
 constexpr std::uintmax_t kMaxSceneFileBytes = 1 << 20;
@@ -110,7 +109,8 @@ LineError read_section(const std::string& k, const toml::table& table, SceneDef&
       const int vline = static_cast<int>(value.source().begin.line);
       const SceneField* spec = find_scene_field(k, sk);
       if (!spec) return {vline, full + ": " + unknown_key_error(k, sk)};
-      if (auto r = apply_key(s, *spec, value, material); !r.empty()) return {vline, full + ": " + r};
+      if (auto r = apply_key(s, *spec, value, material); !r.empty())
+        return {vline, full + ": " + r};
       lines[full] = vline;
     }
   }
@@ -271,7 +271,8 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   // A new file, path, scale or shape is read now, relative to the current directory (the
   // scene's own files were resolved when it was loaded).
   if (section == "mesh" && (key == "file" || key == "path_id" || key == "scale" || key == "shape"))
-    if (auto r = scene_io::load_shape_files(candidate, "--set"); !r.empty()) return where + ": " + r;
+    if (auto r = scene_io::load_shape_files(candidate, "--set"); !r.empty())
+      return where + ": " + r;
   if (const auto problem = find_scene_problem(candidate))
     return where + ": " + blame(*problem, [&](const std::string& k) { return k == lhs; }).message;
   s = std::move(candidate);

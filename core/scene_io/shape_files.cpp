@@ -101,9 +101,8 @@ std::string read_shape_file(const std::string& file, const std::string& source, 
 // Reads and parses `file` into out; on success *resolved becomes the path it was read from
 // (so that a later --set, read from the current directory, finds the same file). "" or the
 // reason.
-std::string load_one(ShapeKind kind, std::string file, const std::string& path_id,
-                     double scale, const std::string& source, ShapeFile& out,
-                     std::string* resolved) {
+std::string load_one(ShapeKind kind, std::string file, const std::string& path_id, double scale,
+                     const std::string& source, ShapeFile& out, std::string* resolved) {
   if (file.empty())
     return std::string("missing: shape = \"") + shape_kind_name(kind) + "\" needs a file";
   std::string text, found = file;

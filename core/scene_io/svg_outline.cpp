@@ -10,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <numbers>
 #include <pugixml.hpp>
 #include <utility>
@@ -157,15 +158,19 @@ std::string parse_path_data(std::string_view d, const Affine& m, std::vector<Sub
   auto ensure_open = [&] {
     if (!open) begin_subpath(cur);  // a command after Z starts at the subpath's start
   };
-  auto add_line = [&](const Vec2& to) {
+  // A line or Bezier segment from the current point through `points` (drawing coordinates
+  // once transformed); the last point becomes the current one.
+  auto add_segment = [&](Segment::Kind kind, std::initializer_list<Vec2> points) {
     ensure_open();
     Segment s;
-    s.kind = Segment::Line;
+    s.kind = kind;
     s.p[0] = m.apply(cur);
-    s.p[1] = m.apply(to);
+    int k = 1;
+    for (const Vec2& p : points) s.p[k++] = m.apply(p);
     out.back().segments.push_back(s);
-    cur = to;
+    cur = *(points.end() - 1);
   };
+  auto add_line = [&](const Vec2& to) { add_segment(Segment::Line, {to}); };
   auto add_arc = [&](double rx, double ry, double phi_deg, bool large, bool sweep, const Vec2& to) {
     ensure_open();
     // SVG 1.1 F.6.2: the same endpoints draw nothing; a zero radius draws a line.
@@ -298,16 +303,8 @@ std::string parse_path_data(std::string_view d, const Affine& m, std::vector<Sub
           c2 = base + Vec2(v[0], v[1]);
           to = base + Vec2(v[2], v[3]);
         }
-        ensure_open();
-        Segment s;
-        s.kind = Segment::Cubic;
-        s.p[0] = m.apply(cur);
-        s.p[1] = m.apply(c1);
-        s.p[2] = m.apply(c2);
-        s.p[3] = m.apply(to);
-        out.back().segments.push_back(s);
+        add_segment(Segment::Cubic, {c1, c2, to});
         last_cubic_ctrl = c2;
-        cur = to;
         break;
       }
       case 'Q':
@@ -322,15 +319,8 @@ std::string parse_path_data(std::string_view d, const Affine& m, std::vector<Sub
           c1 = (prev == 'Q' || prev == 'T') ? Vec2(2 * cur - last_quad_ctrl) : cur;
           to = base + Vec2(v[0], v[1]);
         }
-        ensure_open();
-        Segment s;
-        s.kind = Segment::Quad;
-        s.p[0] = m.apply(cur);
-        s.p[1] = m.apply(c1);
-        s.p[2] = m.apply(to);
-        out.back().segments.push_back(s);
+        add_segment(Segment::Quad, {c1, to});
         last_quad_ctrl = c1;
-        cur = to;
         break;
       }
       case 'A': {

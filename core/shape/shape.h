@@ -19,9 +19,8 @@ namespace invfree {
 
 enum class ShapeKind { Square, Rectangle, Disk, Ring, Polygon, Svg, MeshFile };
 inline constexpr EnumName<ShapeKind> kShapeKindNames[] = {
-    {ShapeKind::Square, "square"},   {ShapeKind::Rectangle, "rectangle"},
-    {ShapeKind::Disk, "disk"},       {ShapeKind::Ring, "ring"},
-    {ShapeKind::Polygon, "polygon"}, {ShapeKind::Svg, "svg"},
+    {ShapeKind::Square, "square"}, {ShapeKind::Rectangle, "rectangle"}, {ShapeKind::Disk, "disk"},
+    {ShapeKind::Ring, "ring"},     {ShapeKind::Polygon, "polygon"},     {ShapeKind::Svg, "svg"},
     {ShapeKind::MeshFile, "mesh"}};
 
 // Which regions of a set of closed paths are inside (SVG's fill-rule).
@@ -45,13 +44,13 @@ struct ShapeFile {
 
 struct ShapeDef {
   ShapeKind kind = ShapeKind::Square;  // the square's side and n_seg stay SceneDef's / BodyDef's
-  double width = 2.0, height = 1.0;           // rectangle
-  double radius = 0.5, inner_radius = 0.25;   // disk (radius), ring (both)
-  Loop outline;                               // polygon
-  std::vector<Loop> holes;                    // polygon
-  std::string file;     // svg, mesh: as the scene gives it (relative to the scene file)
-  std::string path_id;  // svg: the one path to use ("": every closed path of the drawing)
-  double scale = 0.01;  // svg: metres per SVG user unit
+  double width = 2.0, height = 1.0;    // rectangle
+  double radius = 0.5, inner_radius = 0.25;  // disk (radius), ring (both)
+  Loop outline;                              // polygon
+  std::vector<Loop> holes;                   // polygon
+  std::string file;       // svg, mesh: as the scene gives it (relative to the scene file)
+  std::string path_id;    // svg: the one path to use ("": every closed path of the drawing)
+  double scale = 0.01;    // svg: metres per SVG user unit
   double max_edge = 0.0;  // target edge length (m); 0: auto, the longer side of the
                           // shape's bounding box / n_seg (shape/shape_mesh.h)
   ShapeFile loaded;       // svg, mesh: filled by scene_io from `file`

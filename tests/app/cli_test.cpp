@@ -61,16 +61,16 @@ TEST(Cli, AShapeAndItsKeysInAnyOrder) {
   // mesh.shape is applied after the keys it reads, so either order of --set works.
   const std::string outline =
       " --set 'mesh.outline=[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]'";
-  for (const std::string& args :
-       {"simulate --steps 2 --set mesh.shape=polygon" + outline,
-        "simulate --steps 2" + outline + " --set mesh.shape=polygon"}) {
+  for (const std::string& args : {"simulate --steps 2 --set mesh.shape=polygon" + outline,
+                                  "simulate --steps 2" + outline + " --set mesh.shape=polygon"}) {
     const CommandResult r = run(args);
     EXPECT_EQ(r.code, 0) << args << "\n" << r.err;
     EXPECT_NE(r.out.find("compress: 2 steps"), std::string::npos) << r.out;
   }
   // A bad shape: one line naming the key, exit 2.
   const CommandResult bad =
-      run("simulate --steps 2 --set mesh.shape=polygon --set 'mesh.outline=[[0, 0], [1, 1], [1, 0], [0, 1]]'");
+      run("simulate --steps 2 --set mesh.shape=polygon --set 'mesh.outline=[[0, 0], [1, 1], [1, "
+          "0], [0, 1]]'");
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("mesh.outline: "), std::string::npos) << bad.err;
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
@@ -179,7 +179,8 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --scene", "--scene"},
       {"simulate --scene ''",
        ": no such file, and not a built-in scene (bunny, c-shape, compress, course-1-mass-spring, "
-       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, "
+       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, "
+       "plate-hole, ring, "
        "stack, stack-friction)"},
       {"simulate --scene comprss", "comprss: no such file, and not a built-in scene"},
       {"simulate --scene " + dir + "/subdir", dir + "/subdir: is a directory, not a scene file"},

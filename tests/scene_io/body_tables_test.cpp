@@ -115,10 +115,11 @@ std::string error_of(const std::string& text) {
 TEST(BodyTables, BadTablesGetOneLineNamingTheKeyTheTableAndTheLine) {
   EXPECT_EQ(error_of("[mesh]\nn_seg = 2\n[[body]]\noffset = [0.0, 0.0]\n[[body]]\nn_seg = 0\n"),
             "bad.toml:6: body.n_seg: must be between 1 and 4096 (in [[body]] 2)");
-  EXPECT_EQ(error_of("[[body]]\nofset = [1.0, 0.0]\n"),
-            "bad.toml:2: body.ofset: unknown key (did you mean \"offset\"?) (keys of [[body]]: "
-            "side, n_seg, shape, width, height, radius, inner_radius, outline, holes, file, path_id, "
-            "scale, max_edge, offset, velocity, E, nu, mu, lambda)");
+  EXPECT_EQ(
+      error_of("[[body]]\nofset = [1.0, 0.0]\n"),
+      "bad.toml:2: body.ofset: unknown key (did you mean \"offset\"?) (keys of [[body]]: "
+      "side, n_seg, shape, width, height, radius, inner_radius, outline, holes, file, path_id, "
+      "scale, max_edge, offset, velocity, E, nu, mu, lambda)");
   EXPECT_EQ(error_of("[[body]]\noffset = [1.0]\n"),
             "bad.toml:2: body.offset: expected an array of two numbers, e.g. [0.0, -0.5] (in "
             "[[body]] 1)");

@@ -29,8 +29,8 @@ TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
   for (const auto& e : builtin_scenes()) embedded[std::string(e.name)] = std::string(e.text);
   for (const auto& e : stress_scene_files()) embedded[std::string(e.name)] = std::string(e.text);
   size_t files = 0;
-  for (const auto& f :
-       std::filesystem::directory_iterator(std::string(::invfree::test::source_dir()) + "/assets/scenes")) {
+  for (const auto& f : std::filesystem::directory_iterator(
+           std::string(::invfree::test::source_dir()) + "/assets/scenes")) {
     if (f.path().extension() != ".toml") continue;
     ++files;
     const std::string stem = f.path().stem().string();
@@ -49,7 +49,8 @@ TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
   EXPECT_EQ(files, embedded.size());
   EXPECT_EQ(builtin_scene_names(),
             "bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-            "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction");
+            "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, "
+            "stack-friction");
 }
 
 // SceneDef's defaults are the reference demo (scene/scene.h): `compress` is the struct as
@@ -66,11 +67,12 @@ TEST(BuiltinScenes, CompressIsTheDefaultSceneAndDropItsVariant) {
   expected.has_ceiling = false;
   expected.friction = 0.0;
   EXPECT_TRUE(*drop.scene == expected);
-  EXPECT_EQ(
-      load_builtin_scene("stress-h0.1").error,
-      "stress-h0.1: not a built-in scene (bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, "
-      "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, "
-      "stack-friction)");
+  EXPECT_EQ(load_builtin_scene("stress-h0.1").error,
+            "stress-h0.1: not a built-in scene (bunny, c-shape, compress, course-1-mass-spring, "
+            "course-2-dirichlet, "
+            "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, plate-hole, "
+            "ring, stack, "
+            "stack-friction)");
 }
 
 TEST(SceneFiles, SerialisationRoundTrips) {
@@ -176,10 +178,11 @@ TEST(SceneFiles, BadInputGivesOneLineErrorsNamingFileLineAndKey) {
 TEST(SceneFiles, MissingFileAndUnknownName) {
   const SceneLoad load = load_scene("/nonexistent/scene.toml");
   ASSERT_FALSE(load.scene);
-  EXPECT_EQ(load.error,
-            "/nonexistent/scene.toml: no such file, and not a built-in scene (bunny, c-shape, compress, "
-            "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
-            "course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
+  EXPECT_EQ(
+      load.error,
+      "/nonexistent/scene.toml: no such file, and not a built-in scene (bunny, c-shape, compress, "
+      "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
+      "course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
 }
 
 TEST(Overrides, ApplyAndValidate) {
@@ -340,7 +343,8 @@ std::vector<WrongValue> wrong_values(Kind kind) {
       return {{"1.0", "expected an array of polygons"},
               {"[1.0]", "polygon 0: expected an array of points"},
               {"[[1.0, 2.0]]", "polygon 0: point 0: expected [x, y]"},
-              {"[[[0.0, 0.0]], [[1.0, inf]]]", "polygon 1: point 0: element 1: must be a finite number"}};
+              {"[[[0.0, 0.0]], [[1.0, inf]]]",
+               "polygon 1: point 0: element 1: must be a finite number"}};
   }
   return {};
 }
@@ -706,10 +710,12 @@ TEST(BadInput, FilesThatAreNotScenes) {
   expect_bad("/dev/zero", "/dev/zero: not a regular file");
   expect_bad("/dev/urandom", "/dev/urandom: not a regular file");
   expect_bad("", ": no such file");
-  expect_bad("comprss",
-             "comprss: no such file, and not a built-in scene (did you mean \"compress\"?) "
-             "(bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-             "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
+  expect_bad(
+      "comprss",
+      "comprss: no such file, and not a built-in scene (did you mean \"compress\"?) "
+      "(bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
+      "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, "
+      "stack-friction)");
   expect_bad(dir + "/empty.toml/x", "no such file");  // a file used as a directory
   // Unreadable: /proc/self/mem is a regular file that fails every read at offset 0.
   expect_bad("/proc/self/mem", "/proc/self/mem: could not read the file");

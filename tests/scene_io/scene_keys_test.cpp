@@ -186,12 +186,12 @@ TEST(SceneKeys, NeedsNewMeshIsTheTablesColumn) {
   }
   EXPECT_EQ(rebuilding,
             (std::set<std::string>{
-                "mesh.side", "mesh.n_seg", "mesh.density", "mesh.mass", "mesh.jitter",
-                "mesh.seed", "mesh.shape", "mesh.width", "mesh.height", "mesh.radius",
-                "mesh.inner_radius", "mesh.outline", "mesh.holes", "mesh.file", "mesh.path_id",
-                "mesh.scale", "mesh.max_edge", "ceiling.enabled", "mass_spring.enabled",
-                "fixed.enabled", "fixed.corners", "fixed.box_min", "fixed.box_max",
-                "fixed.boxes"}));
+                "mesh.side",     "mesh.n_seg",      "mesh.density",        "mesh.mass",
+                "mesh.jitter",   "mesh.seed",       "mesh.shape",          "mesh.width",
+                "mesh.height",   "mesh.radius",     "mesh.inner_radius",   "mesh.outline",
+                "mesh.holes",    "mesh.file",       "mesh.path_id",        "mesh.scale",
+                "mesh.max_edge", "ceiling.enabled", "mass_spring.enabled", "fixed.enabled",
+                "fixed.corners", "fixed.box_min",   "fixed.box_max",       "fixed.boxes"}));
   // [[body]]: a body more or fewer, or its square, place or velocity; not its material.
   SceneDef two = base;
   two.bodies = {BodyDef{}, BodyDef{}};

@@ -39,7 +39,7 @@ TEST(ShapeRegion, RingIsAnOuterCircleAndAHole) {
   EXPECT_GT(loop_signed_area(r.loops[0].points), 0);
   EXPECT_LT(loop_signed_area(r.loops[1].points), 0);
   EXPECT_EQ(static_cast<int>(r.loops[0].points.size()), circle_segments(1.0, 0.1));
-  EXPECT_EQ(circle_segments(1.0, 0.1), 64);  // ceil(2 pi / 0.1) = 63, up to a multiple of 4
+  EXPECT_EQ(circle_segments(1.0, 0.1), 64);   // ceil(2 pi / 0.1) = 63, up to a multiple of 4
   EXPECT_EQ(circle_segments(0.01, 0.1), 12);  // at least 12
   for (const RegionLoop& l : r.loops)
     for (std::size_t k = 0; k < l.points.size(); ++k)

@@ -233,7 +233,8 @@ ShapeSummary summary(const SceneDef& s) {
   const Simulation sim = make_simulation(s);
   const Boundary b = find_boundary(sim.mesh);
   ShapeSummary out{mesh_area(sim.mesh), total_mass(sim), 0.0, b.edge_count()};
-  for (const auto& e : b.edges) out.boundary_length += (sim.mesh.rest[e[1]] - sim.mesh.rest[e[0]]).norm();
+  for (const auto& e : b.edges)
+    out.boundary_length += (sim.mesh.rest[e[1]] - sim.mesh.rest[e[0]]).norm();
   return out;
 }
 
@@ -244,8 +245,8 @@ TEST(ShapeScenes, PolygonSvgAndMeshFileGiveTheSameBody) {
   EXPECT_NEAR(p.area, 1.0 - 0.5 * 0.2 - 0.2 * 0.2, 1e-12);
 
   dir.file("l.svg", kSvg);
-  const SceneDef svg = load(dir.file(
-      "svg.toml", with_mesh_keys("shape = \"svg\"\nfile = \"l.svg\"\nscale = 1.0\n")));
+  const SceneDef svg = load(
+      dir.file("svg.toml", with_mesh_keys("shape = \"svg\"\nfile = \"l.svg\"\nscale = 1.0\n")));
   const ShapeSummary v = summary(svg);
   EXPECT_NEAR(v.area, p.area, 1e-12);
   EXPECT_NEAR(v.mass, p.mass, 1e-12 * p.mass);
@@ -265,7 +266,8 @@ TEST(ShapeScenes, PolygonSvgAndMeshFileGiveTheSameBody) {
     obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
            std::to_string(t[2] + 1) + "\n";
   dir.file("l.obj", obj);
-  const SceneDef mesh = load(dir.file("mesh.toml", with_mesh_keys("shape = \"mesh\"\nfile = \"l.obj\"\n")));
+  const SceneDef mesh =
+      load(dir.file("mesh.toml", with_mesh_keys("shape = \"mesh\"\nfile = \"l.obj\"\n")));
   const ShapeSummary m = summary(mesh);
   EXPECT_NEAR(m.area, p.area, 1e-12);
   EXPECT_NEAR(m.mass, p.mass, 1e-12 * p.mass);
@@ -291,14 +293,16 @@ std::string error_of(const TempDir& dir, const std::string& toml) {
 
 TEST(ShapeScenes, EveryBadShapeIsRefusedInOneLineNamingItsKey) {
   TempDir dir;
-  dir.file("open.svg", R"(<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 10 0 L 10 10"/></svg>)");
+  dir.file("open.svg",
+           R"(<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 10 0 L 10 10"/></svg>)");
   dir.file("inverted.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n");
   dir.file("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\n");
   dir.file("duplicate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 3 1\n");
   dir.file("unused.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 0\nf 1 2 3\n");
   const BadShape cases[] = {
       {"self-intersecting outline",
-       "shape = \"polygon\"\noutline = [[0, 0], [1, 1], [1, 0], [0, 1]]\n", "mesh.outline", "cross"},
+       "shape = \"polygon\"\noutline = [[0, 0], [1, 1], [1, 0], [0, 1]]\n", "mesh.outline",
+       "cross"},
       {"hole outside its outline",
        "shape = \"polygon\"\noutline = [[0, 0], [1, 0], [1, 1], [0, 1]]\n"
        "holes = [[[2, 2], [3, 2], [3, 3]]]\n",
@@ -323,9 +327,10 @@ TEST(ShapeScenes, EveryBadShapeIsRefusedInOneLineNamingItsKey) {
        "degenerate"},
       {"duplicate triangle", "shape = \"mesh\"\nfile = \"duplicate.obj\"\n", "mesh.file",
        "duplicate"},
-      {"unused node", "shape = \"mesh\"\nfile = \"unused.obj\"\n", "mesh.file", "used by no triangle"},
-      {"max_edge past the cap", "shape = \"disk\"\nradius = 0.5\nmax_edge = 1e-5\n", "mesh.max_edge",
-       "cap"},
+      {"unused node", "shape = \"mesh\"\nfile = \"unused.obj\"\n", "mesh.file",
+       "used by no triangle"},
+      {"max_edge past the cap", "shape = \"disk\"\nradius = 0.5\nmax_edge = 1e-5\n",
+       "mesh.max_edge", "cap"},
   };
   for (const BadShape& c : cases) {
     std::string text = kPolygonScene;

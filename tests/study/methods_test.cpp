@@ -109,8 +109,8 @@ TEST(Methods, EachMethodSetsItsModelSolverAndIntegrator) {
 
 TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
   std::set<std::string> on_disk;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::string(::invfree::test::source_dir()) + "/assets/scenes")) {
+  for (const auto& e : std::filesystem::directory_iterator(
+           std::string(::invfree::test::source_dir()) + "/assets/scenes")) {
     const std::string name = e.path().stem().string();
     if (name.rfind("stress-", 0) == 0 && e.path().extension() == ".toml") on_disk.insert(name);
   }
@@ -128,8 +128,8 @@ TEST(StressScenes, EveryFileIsEmbeddedAndLoads) {
     ASSERT_TRUE(scene) << error;
     EXPECT_EQ(scene->name, s.name);
     // The file on disk is the very text that was embedded.
-    const SceneLoad file =
-        load_scene(std::string(::invfree::test::source_dir()) + "/assets/scenes/" + s.name + ".toml");
+    const SceneLoad file = load_scene(std::string(::invfree::test::source_dir()) +
+                                      "/assets/scenes/" + s.name + ".toml");
     ASSERT_TRUE(file.scene) << file.error;
     EXPECT_TRUE(*file.scene == *scene) << s.name << ": rebuild after editing a stress scene";
   }

@@ -41,8 +41,8 @@ std::string slurp(const fs::path& p) {
 
 CliRun run(const std::string& args, const fs::path& dir) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd =
-      std::string(::invfree::test::exe_path()) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd = std::string(::invfree::test::exe_path()) + " " + args + " >" +
+                          out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
