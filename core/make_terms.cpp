@@ -26,8 +26,8 @@ void make_friction(const Simulation& sim, StepProblem& p) {
   if (!f.on) return;
   f.weight.resize(n);
   for (int i = 0; i < n; ++i)
-    f.weight[i] = friction_weight(s.friction, ground_gap(s, sim.x[2 * i], sim.x[2 * i + 1]),
-                                  p.ground.at(i));
+    f.weight[i] =
+        friction_weight(s.friction, ground_gap(s, sim.x[2 * i], sim.x[2 * i + 1]), p.ground.at(i));
   f.eps_u = kFrictionEpsV * s.h;
 }
 
@@ -74,6 +74,8 @@ void make_terms(const Simulation& sim, const Boundary* boundary, StepProblem& p,
   p.h = s.h;
   p.x_start = sim.x;
   p.x_tilde = sim.x + s.h * sim.v;
+  p.inertia = !s.is_static();
+  const double factor = load_factor(s, sim.step_count + 1);
   p.elasticity = {s.model, s.lame, s.projection, s.inversion_filter, s.has_triangle_elasticity()};
   p.elasticity.triangle_lame = sim.triangle_lame.empty() ? nullptr : sim.triangle_lame.data();
   p.springs.on = s.has_mass_spring && sim.workspace;
@@ -83,7 +85,14 @@ void make_terms(const Simulation& sim, const Boundary* boundary, StepProblem& p,
     p.springs.springs = &sim.workspace->springs;
     p.springs.slots = &sim.workspace->spring_slots;
   }
-  p.gravity = {s.has_gravity, s.gravity};
+  p.gravity = {s.has_gravity, factor * s.gravity};
+  p.dead_load.on = sim.node_load.size() == 2 * n;
+  p.dead_load.force = sim.node_load.data();
+  p.dead_load.factor = factor;
+  p.pressure.on = !sim.pressure_edges.empty();
+  p.pressure.edges = &sim.pressure_edges;
+  p.pressure.factor = factor;
+  p.pressure.project = s.projection != HessianProjection::None;
   p.ground = ground_barrier_of(sim);
   make_friction(sim, p);
   make_ceiling(sim, p);

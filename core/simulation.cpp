@@ -6,12 +6,12 @@
 #include <limits>
 
 #include "collision/intersection_check.h"
-#include "scene/fixed_nodes.h"
-#include "scene/initial_state.h"
-#include "scene/scene_mesh.h"
 #include "energy_report.h"
 #include "make_terms.h"
 #include "potential/term_sums.h"
+#include "scene/fixed_nodes.h"
+#include "scene/initial_state.h"
+#include "scene/scene_mesh.h"
 #include "solver/step_workspace.h"
 
 namespace invfree {
@@ -53,8 +53,7 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
     // No two boundary edges intersect (exact), hence every node-edge distance is > 0.
     StepWorkspace& ws = *sim.workspace;
     const SelfContactTimer timer{ws.caches.contact.ms};
-    if (const auto hit =
-            find_self_intersection(ws.boundary, x, ws.caches.grid, ws.edge_pairs)) {
+    if (const auto hit = find_self_intersection(ws.boundary, x, ws.caches.grid, ws.edge_pairs)) {
       const auto& a = ws.boundary.edges[hit->edge_a];
       const auto& b = ws.boundary.edges[hit->edge_b];
       *message = "boundary edges " + std::to_string(a[0]) + "-" + std::to_string(a[1]) + " and " +
@@ -78,7 +77,7 @@ void fill_problem(Simulation& sim) {
   StepWorkspace& ws = *sim.workspace;
   const SceneDef& s = sim.scene;
   const Boundary* boundary = s.has_self_contact ? &boundary_of(sim) : nullptr;
-  if (s.integrator != Integrator::ImplicitEuler) boundary = nullptr;
+  if (s.integrator == Integrator::SymplecticEuler) boundary = nullptr;
   make_terms(sim, boundary, ws.problem, ws.caches);
 }
 
@@ -89,6 +88,10 @@ NewtonSettings newton_settings(const SceneDef& s) {
   settings.step_expansion = s.step_expansion;
   settings.friction_crossing_stop = s.friction_crossing_stop;
   settings.linear_solver = s.linear_solver;
+  // Without inertia the Hessian has no lower bound for PCG's error estimate: a static
+  // step factorises directly (find_scene_problem refuses "pcg" with "static").
+  if (s.is_static() && s.linear_solver == LinearSolverKind::Auto)
+    settings.linear_solver = LinearSolverKind::Ldlt;
   settings.projected = s.projection != HessianProjection::None;
   return settings;
 }
@@ -209,12 +212,19 @@ Simulation make_simulation(const SceneDef& scene) {
     step_ws.problem.springs.springs = &step_ws.springs;
     step_ws.problem.springs.slots = &step_ws.spring_slots;
   }
-  const std::vector<int> fixed = select_fixed_nodes(scene, sim.mesh);
+  const std::vector<int> fixed = select_fixed_dofs(scene, sim.mesh);
   step_ws.problem.fixed = make_fixed_dofs(fixed, ws.hessian);
-  for (int node : fixed) sim.v.segment<2>(2 * node).setZero();
+  for (int dof : fixed) sim.v[dof] = 0.0;
+  if (scene.is_static()) sim.v.setZero();
+  if (scene.has_tractions()) {
+    const Boundary& boundary = boundary_of(sim);
+    sim.node_load = traction_node_forces(scene, sim.mesh, boundary);
+    sim.pressure_edges = pressure_edges(scene, sim.mesh, boundary);
+  }
   ws.min_node_mass = *std::min_element(sim.node_mass.begin(), sim.node_mass.end());
-  if (scene.integrator == Integrator::ImplicitEuler)
-    prepare_linear_solver(ws, scene.linear_solver, scene.projection != HessianProjection::None);
+  if (scene.integrator != Integrator::SymplecticEuler)
+    prepare_linear_solver(ws, newton_settings(scene).linear_solver,
+                          scene.projection != HessianProjection::None);
   const int dofs = 2 * sim.mesh.node_count();
   sim.workspace->z.resize(dofs + (scene.has_ceiling ? 1 : 0));
   sim.workspace->x_new.resize(dofs);
@@ -246,7 +256,10 @@ StepReport step(Simulation& sim) {
     report = symplectic_euler_step(sim, ceiling_new);
   } else {
     report = implicit_euler_step(sim, ceiling_new, stiffness_new);
-    ws.v_new = (ws.x_new - sim.x) / sim.scene.h;
+    if (sim.scene.is_static())
+      ws.v_new.setZero();  // equilibrium: nothing moves between load steps
+    else
+      ws.v_new = (ws.x_new - sim.x) / sim.scene.h;
   }
   if (report.status == StepStatus::Ok)
     report.status = check_invariants(sim, ws.x_new, ws.v_new, ceiling_new, &report.message);

@@ -16,6 +16,7 @@
 
 #include "potential/pull_spring.h"
 #include "scene/scene.h"
+#include "scene/tractions.h"
 #include "solver/step_status.h"
 
 namespace invfree {
@@ -59,6 +60,10 @@ struct Simulation {
   // otherwise empty: each node's plane-contact area, each triangle's material.
   std::vector<double> node_contact_area;
   std::vector<Lame> triangle_lame;
+  // Only with [traction] tables (scene/tractions.h), otherwise empty: the dead loads'
+  // force per node (2N) and the pressure's edges.
+  VecX node_load;
+  std::vector<PressureEdge> pressure_edges;
   // State.
   VecX x, v;                       // 2N each
   double ceiling_y = 0.0;          // actual height (within tol * h of ceiling_nominal)

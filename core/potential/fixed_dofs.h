@@ -16,26 +16,26 @@ namespace invfree {
 
 struct FixedDofs {
   bool on = false;
-  std::vector<int> dofs;            // 2 per fixed node, ascending
+  std::vector<int> dofs;            // the held coordinates (2 node + 0 or 1), ascending
   std::vector<int> zero_slots;      // every entry in a fixed row or column, off its diagonal
   std::vector<int> diagonal_slots;  // the fixed dofs' diagonal entries
 };
 
-inline FixedDofs make_fixed_dofs(const std::vector<int>& nodes, const SparseHessian& h) {
+// dofs: scene/fixed_nodes.h's select_fixed_dofs (both coordinates of a node, or one).
+inline FixedDofs make_fixed_dofs(const std::vector<int>& dofs, const SparseHessian& h) {
   FixedDofs f;
-  f.on = !nodes.empty();
+  f.on = !dofs.empty();
   const auto& m = h.matrix;
-  for (int node : nodes)
-    for (int dof : {2 * node, 2 * node + 1}) {
-      f.dofs.push_back(dof);
-      f.diagonal_slots.push_back(h.diagonal_slots[dof]);
-      for (int k = m.outerIndexPtr()[dof]; k < m.outerIndexPtr()[dof + 1]; ++k) {
-        const int row = m.innerIndexPtr()[k];
-        if (row == dof) continue;
-        f.zero_slots.push_back(k);                         // (row, dof)
-        f.zero_slots.push_back(sparse_slot(m, dof, row));  // (dof, row)
-      }
+  for (int dof : dofs) {
+    f.dofs.push_back(dof);
+    f.diagonal_slots.push_back(h.diagonal_slots[dof]);
+    for (int k = m.outerIndexPtr()[dof]; k < m.outerIndexPtr()[dof + 1]; ++k) {
+      const int row = m.innerIndexPtr()[k];
+      if (row == dof) continue;
+      f.zero_slots.push_back(k);                         // (row, dof)
+      f.zero_slots.push_back(sparse_slot(m, dof, row));  // (dof, row)
     }
+  }
   return f;
 }
 

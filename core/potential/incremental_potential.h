@@ -6,7 +6,8 @@
 //                   + sum_t area_t Psi(F_t)                         elasticity.h
 //                   + k_pull/2 |x_p - target|^2                     pull_spring.h
 //                   + sum_s 1/2 k l^2 (|d_s|^2/l^2 - 1)^2           mass_spring.h
-//                   + sum_pairs B(D(node, edge)) + lagged friction ] self_contact.h
+//                   + sum_pairs B(D(node, edge)) + lagged friction  self_contact.h
+//                   - sum_i f_i.x_i + p A(x) ]                      boundary_load.h
 //           + 1/2 k (c - c_target)^2                                ceiling_penalty.h
 // over the node coordinates x (2N) and, when the scene has a ceiling, its height c as one
 // extra unknown. Every term meets the contract of term.h; StepProblem lists them once
@@ -14,7 +15,8 @@
 // (term_sums.h) are written once over that list. The node terms are fused with inertia in
 // one loop over the nodes. A mass-spring scene (the course's chapters 1-5) has springs
 // instead of the triangles' elasticity; fixed nodes (fixed_dofs.h) are eliminated from the
-// gradient and Hessian. core/make_terms.cpp builds the terms from a scene.
+// gradient and Hessian. core/make_terms.cpp builds the terms from a scene. A static step
+// (solver.integrator = "static") has no inertia: the same sum without its first line.
 // Inputs: a StepProblem (everything frozen for the step), its caches and z = [x; c].
 // Outputs: the value (+infinity outside the feasible set: an inverted neo-Hookean
 // triangle or a node on or through a plane), the gradient and projected Hessian, and the
@@ -24,6 +26,7 @@
 #include <vector>
 
 #include "linalg/sparse_hessian.h"
+#include "potential/boundary_load.h"
 #include "potential/ceiling_penalty.h"
 #include "potential/elasticity.h"
 #include "potential/fixed_dofs.h"
@@ -43,15 +46,18 @@ struct StepProblem {
   const Mesh* mesh = nullptr;
   const std::vector<double>* mass = nullptr;  // per node
   double h = 0.01;
-  VecX x_tilde;  // x^n + h v^n (2N): inertia's target
-  VecX x_start;  // x^n (2N): lagged friction's reference
+  VecX x_tilde;         // x^n + h v^n (2N): inertia's target
+  VecX x_start;         // x^n (2N): lagged friction's reference
+  bool inertia = true;  // false: a static step (equilibrium, no 1/2 |x - x_tilde|^2_M)
 
   // The terms.
   Gravity gravity;
+  DeadLoad dead_load;
   GroundBarrier ground;
   GroundFriction friction;
   CeilingBarrier ceiling;  // on: the ceiling's height is the unknown z[2N]
   Elasticity elasticity;
+  PressureLoad pressure;
   CeilingPenalty ceiling_penalty;
   PullSpring pull;
   MassSpring springs;
@@ -89,6 +95,7 @@ struct StepProblem {
   template <class Self, class Fn>
   static void node_terms(Self& p, Fn& fn) {
     fn(p.gravity);
+    fn(p.dead_load);
     fn(p.ground);
     fn(p.friction);
     fn(p.ceiling);
@@ -96,6 +103,7 @@ struct StepProblem {
   template <class Self, class Fn>
   static void mesh_terms(Self& p, Fn& fn) {
     fn(p.elasticity);
+    fn(p.pressure);
     fn(p.ceiling_penalty);
     fn(p.pull);
     fn(p.springs);
@@ -106,12 +114,11 @@ struct StepProblem {
 double ip_energy(const StepProblem& p, StepCaches& caches, const VecX& z);
 // A term's Hessian blocks outside the pattern rebuild it (hessian.pattern_version
 // changes; the solve redoes its symbolic analysis).
-void ip_gradient_hessian(const StepProblem& p, StepCaches& caches, const VecX& z,
-                         VecX& gradient, SparseHessian& hessian);
+void ip_gradient_hessian(const StepProblem& p, StepCaches& caches, const VecX& z, VecX& gradient,
+                         SparseHessian& hessian);
 // The largest alpha in [0, 1] that every term's filter allows along dir (the planes, the
 // inversion filter where the model needs det F > 0, self-contact's CCD).
-double largest_safe_step(const StepProblem& p, StepCaches& caches, const VecX& z,
-                         const VecX& dir);
+double largest_safe_step(const StepProblem& p, StepCaches& caches, const VecX& z, const VecX& dir);
 // The largest fraction of the straight motion z -> trial that the stateful filters allow.
 double path_step(const StepProblem& p, StepCaches& caches, const VecX& z, const VecX& trial);
 // The terms' preparation at Newton's start point (self-contact's candidates there).

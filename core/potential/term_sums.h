@@ -35,7 +35,8 @@ double node_energy_range(const P& p, const double* z, int begin, int end) {
     p.for_each_node_term([&](const auto& term) {
       if (term.on) potential += term.value(s);
     });
-    e += inertia_value(s, p.x_tilde[2 * i], p.x_tilde[2 * i + 1]) + h2 * potential;
+    e += (p.inertia ? inertia_value(s, p.x_tilde[2 * i], p.x_tilde[2 * i + 1]) : 0.0) +
+         h2 * potential;
   }
   return e;
 }
@@ -75,7 +76,7 @@ void add_node_derivatives(const P& p, const double* z, int begin, int end, Assem
     const int ix = 2 * i, iy = 2 * i + 1;
     const NodeState s = p.node_state(z, i);
     NodeDerivatives d;
-    set_inertia_derivatives(s, p.x_tilde[ix], p.x_tilde[iy], d);
+    if (p.inertia) set_inertia_derivatives(s, p.x_tilde[ix], p.x_tilde[iy], d);
     p.for_each_node_term([&](const auto& term) {
       if (term.on) term.add_derivatives(s, h2, d);
     });
@@ -165,8 +166,8 @@ double min_path_step(const P& p, StepCaches& caches, const VecX& z, const VecX& 
 // Explicit integration's gradient of the potential energy (minus the force) at x with
 // velocities v: the whole-mesh terms' forces first, then each node's terms.
 template <class P>
-void explicit_gradient(const P& p, StepCaches& caches, const VecX& x, const VecX& v,
-                       double ceiling, VecX& gradient) {
+void explicit_gradient(const P& p, StepCaches& caches, const VecX& x, const VecX& v, double ceiling,
+                       VecX& gradient) {
   const int n = p.node_count();
   gradient.setZero(2 * n);
   const TermPoint at = term_point(p, caches, x);

@@ -1,5 +1,6 @@
 #include "scene/fixed_nodes.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -93,23 +94,93 @@ std::optional<SceneProblem> fixed_rule_problem(const SceneDef& s, const Mesh& me
       return SceneProblem{"fixed.box_min", buf, {"fixed.box_max", "mesh.side", "mesh.n_seg"}};
     }
   }
-  for (size_t k = 0; k < s.fixed_boxes.size(); ++k) {
-    const Loop& box = s.fixed_boxes[k];
-    const std::string which = "box " + std::to_string(k + 1);
-    if (box.size() != 2 || !box[0].allFinite() || !box[1].allFinite())
-      return SceneProblem{"fixed.boxes", which + ": expected [[x_min, y_min], [x_max, y_max]]", {}};
-    if ((box[0].array() > box[1].array()).any())
-      return SceneProblem{
-          "fixed.boxes", which + ": its min corner is above or right of its max", {}};
-    const double tol = tolerance(rest_bounds(mesh));
-    if (std::none_of(mesh.rest.begin(), mesh.rest.end(),
-                     [&](const Vec2& p) { return in_extra_box(box, p, tol); }))
-      return SceneProblem{"fixed.boxes", which + " holds no node of the rest mesh", {"mesh.shape"}};
-  }
-  if (select_fixed_nodes(s, mesh).empty())
+  for (const auto& [key, boxes] :
+       {std::pair{"fixed.boxes", &s.fixed_boxes}, std::pair{"fixed.x_boxes", &s.fixed_x_boxes},
+        std::pair{"fixed.y_boxes", &s.fixed_y_boxes}})
+    for (size_t k = 0; k < boxes->size(); ++k) {
+      const Loop& box = (*boxes)[k];
+      const std::string which = "box " + std::to_string(k + 1);
+      if (box.size() != 2 || !box[0].allFinite() || !box[1].allFinite())
+        return SceneProblem{key, which + ": expected [[x_min, y_min], [x_max, y_max]]", {}};
+      if ((box[0].array() > box[1].array()).any())
+        return SceneProblem{key, which + ": its min corner is above or right of its max", {}};
+      const double tol = tolerance(rest_bounds(mesh));
+      if (std::none_of(mesh.rest.begin(), mesh.rest.end(),
+                       [&](const Vec2& p) { return in_extra_box(box, p, tol); }))
+        return SceneProblem{key, which + " holds no node of the rest mesh", {"mesh.shape"}};
+    }
+  if (select_fixed_dofs(s, mesh).empty())
     return SceneProblem{"fixed.corners",
                         "the [fixed] rules select no node (name corners or give a box)",
                         {"fixed.box_min", "fixed.box_max"}};
+  return std::nullopt;
+}
+
+}  // namespace invfree
+
+namespace invfree {
+
+std::vector<int> select_fixed_dofs(const SceneDef& s, const Mesh& mesh) {
+  std::vector<int> dofs;
+  const bool x = s.fixed_components != FixedComponents::Y;
+  const bool y = s.fixed_components != FixedComponents::X;
+  for (int node : select_fixed_nodes(s, mesh)) {
+    if (x) dofs.push_back(2 * node);
+    if (y) dofs.push_back(2 * node + 1);
+  }
+  if (s.has_fixed && !mesh.rest.empty()) {
+    const double tol = tolerance(rest_bounds(mesh));
+    for (int i = 0; i < mesh.node_count(); ++i) {
+      for (const Loop& box : s.fixed_x_boxes)
+        if (box.size() == 2 && in_extra_box(box, mesh.rest[i], tol)) dofs.push_back(2 * i);
+      for (const Loop& box : s.fixed_y_boxes)
+        if (box.size() == 2 && in_extra_box(box, mesh.rest[i], tol)) dofs.push_back(2 * i + 1);
+    }
+  }
+  std::sort(dofs.begin(), dofs.end());
+  dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+  return dofs;
+}
+
+std::optional<SceneProblem> static_support_problem(const SceneDef& s, const Mesh& mesh) {
+  if (!s.is_static()) return std::nullopt;
+  // A rigid motion of a body is u_i = (a - t y_i, b + t x_i) about the body's rest centre;
+  // each held dof is one linear condition on (a, b, t). The body is held when the
+  // conditions have rank 3: the smallest eigenvalue of their normal matrix is not ~0.
+  const std::vector<int> dofs = select_fixed_dofs(s, mesh);
+  const int bodies = static_cast<int>(mesh.body_begin.size());
+  for (int body = 0; body < bodies; ++body) {
+    const int begin = mesh.body_begin[body];
+    const int end = body + 1 < bodies ? mesh.body_begin[body + 1] : mesh.node_count();
+    Vec2 centre = Vec2::Zero();
+    double extent = 0.0;
+    for (int i = begin; i < end; ++i) centre += mesh.rest[i];
+    centre /= double(end - begin);
+    for (int i = begin; i < end; ++i) extent = std::max(extent, (mesh.rest[i] - centre).norm());
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+    for (int dof : dofs) {
+      const int node = dof / 2;
+      if (node < begin || node >= end) continue;
+      const Vec2 r = (mesh.rest[node] - centre) / extent;  // rotation scaled to length 1
+      const Eigen::Vector3d row =
+          dof % 2 == 0 ? Eigen::Vector3d(1.0, 0.0, -r.y()) : Eigen::Vector3d(0.0, 1.0, r.x());
+      normal += row * row.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(normal);
+    if (eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2])) continue;
+    const Eigen::Vector3d mode = eig.eigenvectors().col(0);
+    const char* motion = std::abs(mode[2]) > std::max(std::abs(mode[0]), std::abs(mode[1]))
+                             ? "rotate"
+                         : std::abs(mode[0]) >= std::abs(mode[1]) ? "move in x"
+                                                                  : "move in y";
+    const std::string which = bodies > 1 ? "[[body]] " + std::to_string(body + 1) : "the body";
+    return SceneProblem{
+        "solver.integrator",
+        "static equilibrium needs every body held against rigid motion, but " + which +
+            " is free to " + motion +
+            " (hold nodes with [fixed]; a plane alone does not hold a body)",
+        {"fixed.enabled", "fixed.corners", "fixed.box_min", "fixed.boxes", "fixed.components"}};
+  }
   return std::nullopt;
 }
 

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "scene/fixed_nodes.h"
 #include "scene/scene_mesh.h"
+#include "scene/tractions.h"
 
 namespace invfree {
 
@@ -32,13 +34,19 @@ VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
       x.segment<2>(2 * i) = x.segment<2>(2 * i).cwiseProduct(scene.initial_stretch);
   if (scene.jitter > 0.0) {
     std::uint64_t state = scene.seed;
+    // Held coordinates stay where the stretch put them (a patch test's boundary); their
+    // draws are still made, so the free nodes' offsets do not depend on the [fixed] rule.
+    std::vector<char> held(x.size(), 0);
+    for (int dof : select_fixed_dofs(scene, mesh)) held[dof] = 1;
     // Each body's own edge length; the draws in node order, x then y, as for one body.
     for (size_t body = 0; body < mesh.body_begin.size(); ++body) {
       const double amplitude = scene.jitter * body_edge_length(scene, static_cast<int>(body));
       const int end =
           body + 1 < mesh.body_begin.size() ? mesh.body_begin[body + 1] : mesh.node_count();
-      for (int k = 2 * mesh.body_begin[body]; k < 2 * end; ++k)
-        x[k] += amplitude * next_uniform(state);
+      for (int k = 2 * mesh.body_begin[body]; k < 2 * end; ++k) {
+        const double offset = amplitude * next_uniform(state);
+        if (!held[k]) x[k] += offset;
+      }
     }
   }
   return x;
@@ -78,6 +86,8 @@ std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
   const VecX x = initial_positions(s, mesh);
   if (auto problem = overlapping_bodies(s, mesh, x)) return problem;
   if (auto problem = fixed_rule_problem(s, mesh)) return problem;
+  if (auto problem = traction_problem(s, mesh)) return problem;
+  if (auto problem = static_support_problem(s, mesh)) return problem;
   const bool needs_det_f_positive = s.has_triangle_elasticity() && !model_allows_inversion(s.model);
   for (const auto& tri : mesh.triangles) {
     // The rest triangle's area must be a normal double: the rest shape's inverse and the

@@ -15,7 +15,7 @@
 namespace invfree {
 
 // mesh: scene_mesh(scene). Positions: rest, stretched, jittered by each body's edge
-// length; velocities: each body's.
+// length (except the fixed nodes' held coordinates); velocities: each body's.
 VecX initial_positions(const SceneDef& scene, const Mesh& mesh);
 VecX initial_velocities(const SceneDef& scene, const Mesh& mesh);
 std::optional<SceneProblem> check_initial_state(const SceneDef& scene);

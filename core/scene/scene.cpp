@@ -48,6 +48,10 @@ std::optional<FixedCorners> fixed_corners_from_name(std::string_view name) {
   return enum_from_name(kFixedCornersNames, name);
 }
 
+double load_factor(const SceneDef& s, long step) {
+  return step >= s.ramp_steps ? 1.0 : double(step) / double(s.ramp_steps);
+}
+
 int body_count(const SceneDef& s) {
   return s.bodies.empty() ? 1 : static_cast<int>(s.bodies.size());
 }
@@ -224,6 +228,11 @@ std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
         "self_contact.enabled",
         "is not available with [mass_spring] (springs need a fixed Hessian pattern)",
         {"mass_spring.enabled"}};
+  if (s.is_static() && s.linear_solver == LinearSolverKind::Pcg)
+    return SceneProblem{"solver.linear_solver",
+                        "\"pcg\" needs inertia's lower bound of the Hessian, which a static "
+                        "step has not (use \"auto\", \"ldlt\" or \"cholmod\")",
+                        {"solver.integrator"}};
   if (s.has_self_contact && s.has_fixed)
     return SceneProblem{"self_contact.enabled",
                         "is not available with [fixed] (fixed nodes need a fixed Hessian pattern)",

@@ -20,10 +20,13 @@
 
 namespace invfree {
 
-enum class Integrator { ImplicitEuler, SymplecticEuler };
+// Static: each step minimises the potential without inertia (elastic energy, gravity,
+// boundary loads, barriers): equilibrium under the loads of that step's ramp.
+enum class Integrator { ImplicitEuler, SymplecticEuler, Static };
 inline constexpr EnumName<Integrator> kIntegratorNames[] = {
     {Integrator::ImplicitEuler, "implicit-euler"},
-    {Integrator::SymplecticEuler, "symplectic-euler"}};
+    {Integrator::SymplecticEuler, "symplectic-euler"},
+    {Integrator::Static, "static"}};
 const char* integrator_name(Integrator i);
 std::optional<Integrator> integrator_from_name(std::string_view name);
 
@@ -54,6 +57,26 @@ inline constexpr EnumName<FixedCorners> kFixedCornersNames[] = {
 };
 const char* fixed_corners_name(FixedCorners c);
 std::optional<FixedCorners> fixed_corners_from_name(std::string_view name);
+
+// Which coordinates of the fixed nodes are held: both, or only x or y (a roller support).
+enum class FixedComponents { XY, X, Y };
+inline constexpr EnumName<FixedComponents> kFixedComponentsNames[] = {
+    {FixedComponents::XY, "xy"}, {FixedComponents::X, "x"}, {FixedComponents::Y, "y"}};
+
+// [traction] or [[traction]]: a load on the boundary edges whose two nodes lie (at rest) in
+// [box_min, box_max]. `force`: a dead load, the total force (N per unit thickness) spread
+// over those edges by length. `pressure` (Pa): a follower load normal to the deformed edges,
+// pushing into the body; the edges must then form whole boundary loops (on them it is
+// conservative: pressure times the enclosed area). scene/tractions.h.
+struct TractionDef {
+  Vec2 box_min = Vec2(1.0, 1.0);
+  Vec2 box_max = Vec2(-1.0, -1.0);
+  Vec2 force = Vec2::Zero();
+  double pressure = 0.0;
+  bool operator==(const TractionDef&) const = default;
+};
+// The largest number of [[traction]] tables a scene may list.
+constexpr int kMaxTractions = 64;
 
 // [mesh] mass (scene/mesh.h's MassMode), as a scene file spells it.
 inline constexpr EnumName<MassMode> kMassModeNames[] = {{MassMode::Uniform, "uniform"},
@@ -107,6 +130,9 @@ struct SceneDef {
   double h = 0.01;
   double tol = 1e-2;  // Newton stops when |p|_inf / h < tol (m/s)
   int max_newton = 100;
+  // Loads (gravity, tractions) grow linearly over the first ramp_steps steps, then stay:
+  // step k (1-based) applies min(1, k / ramp_steps) of them.
+  int ramp_steps = 1;
   // [solver]
   HessianProjection projection = HessianProjection::Diagonal;
   bool inversion_filter = true;
@@ -145,6 +171,12 @@ struct SceneDef {
   Vec2 fixed_box_max = Vec2(-1.0, -1.0);
   // More boxes, each [[x_min, y_min], [x_max, y_max]] (a plate held at both ends).
   std::vector<Loop> fixed_boxes;
+  // Of the nodes above (corners, box, boxes): both coordinates held, or only x or y.
+  FixedComponents fixed_components = FixedComponents::XY;
+  // Rollers: boxes whose nodes are held in x only (a wall's symmetry line) or in y only.
+  std::vector<Loop> fixed_x_boxes, fixed_y_boxes;
+  // [traction] / [[traction]]: boundary loads, none by default.
+  std::vector<TractionDef> tractions;
   // The ground's normal (any slope; normalised where used): the plane passes through
   // (0, ground_y). (0, 1) is the horizontal ground.
   Vec2 ground_normal = Vec2(0.0, 1.0);
@@ -164,11 +196,15 @@ struct SceneDef {
   // when they share it; otherwise scene_node_contact_areas gives each node its body's).
   double contact_area() const;
   bool has_contact() const { return has_ground || has_ceiling; }
+  bool has_tractions() const { return !tractions.empty(); }
+  bool is_static() const { return integrator == Integrator::Static; }
   // The triangles' elasticity (material.*) is a term of this scene's potential.
   bool has_triangle_elasticity() const { return !has_mass_spring; }
 };
 
 int body_count(const SceneDef& s);  // 1 without [[body]] tables
+// The fraction of the loads step `step` (1-based) applies: min(1, step / ramp_steps).
+double load_factor(const SceneDef& s, long step);
 PlacedBody placed_body(const SceneDef& s, int body);
 // The body's edge length: side / n_seg for the square, the target max_edge of any other
 // shape (shape/shape_mesh.h's shape_max_edge).
@@ -214,7 +250,7 @@ const ValueBounds* find_value_bounds(std::string_view key);  // nullptr when non
 
 // The rule of needs_new_mesh (simulation.h), from the scene field table
 // (scene/scene_fields.h): a field marked new_mesh differs, or the bodies' count, or a
-// body's field marked new_mesh (a body's own material is not).
+// body's field marked new_mesh (a body's own material is not), or the tractions.
 bool fields_need_new_mesh(const SceneDef& old, const SceneDef& next);
 
 // What is wrong with a scene: the key whose value is out of range or whose relation to

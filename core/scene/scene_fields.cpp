@@ -19,6 +19,7 @@ constexpr ValueBounds kBelowHalf{0.0, 0.5, false, true, false};  // [0, 0.5)
 constexpr ValueBounds kSegments{1.0, double(kMaxSegments), false, false, true};
 constexpr ValueBounds kCount{0.0, kInf, false, false, true};
 constexpr ValueBounds kNewtonIterations{1.0, 100000.0, false, false, true};
+constexpr ValueBounds kRampSteps{1.0, 1e9, false, false, true};
 
 // As docs/scene-keys.md writes each type.
 constexpr EnumName<FieldType> kFieldTypeNames[] = {
@@ -297,6 +298,8 @@ constexpr SceneField kFields[] = {
         {1e-5, 1.0}),
     integer<&SceneDef::max_newton>("time", "max_newton", kNewtonIterations,
                                    "Newton iterations per step at most"),
+    integer<&SceneDef::ramp_steps>("time", "ramp_steps", kRampSteps,
+                                   "loads (gravity, tractions) grow linearly over this many steps"),
     choice<&SceneDef::projection, kProjectionNames>(
         "solver", "projection",
         "elastic Hessian made PSD: the lecture's per-part clamp, each triangle's 6x6 "
@@ -308,7 +311,9 @@ constexpr SceneField kFields[] = {
     boolean<&SceneDef::friction_crossing_stop>(
         "solver", "friction_crossing_stop",
         "Newton's safeguard: a sliding node stops where its slip changes sign"),
-    choice<&SceneDef::integrator, kIntegratorNames>("solver", "integrator", "time integration"),
+    choice<&SceneDef::integrator, kIntegratorNames>(
+        "solver", "integrator",
+        "time integration, or \"static\": each step the equilibrium under its loads"),
     choice<&SceneDef::linear_solver, kLinearSolverNames>(
         "solver", "linear_solver",
         "solver of Newton's linear system (core/linalg/linear_solver_kind.h)"),
@@ -352,6 +357,9 @@ constexpr SceneField kFields[] = {
                                               "nodes whose rest position is in [box_min, box_max] "
                                               "are held fixed (min > max: no box)")),
     rebuilds(vector<&SceneDef::fixed_box_max>("fixed", "box_max", "m", "the box's upper corner")),
+    rebuilds(choice<&SceneDef::fixed_components, kFixedComponentsNames>(
+        "fixed", "components",
+        "the fixed nodes' held coordinates: both, or only x or y (a roller support)")),
     {"fixed",
      "boxes",
      FieldType::Loops,
@@ -362,6 +370,26 @@ constexpr SceneField kFields[] = {
      {},
      get_member<&SceneDef::fixed_boxes>,
      set_member<&SceneDef::fixed_boxes>},
+    {"fixed",
+     "x_boxes",
+     FieldType::Loops,
+     "m",
+     "rollers: boxes like `boxes` whose nodes are held in x only (free to slide in y)",
+     kFinite,
+     true,
+     {},
+     get_member<&SceneDef::fixed_x_boxes>,
+     set_member<&SceneDef::fixed_x_boxes>},
+    {"fixed",
+     "y_boxes",
+     FieldType::Loops,
+     "m",
+     "rollers: boxes like `boxes` whose nodes are held in y only (free to slide in x)",
+     kFinite,
+     true,
+     {},
+     get_member<&SceneDef::fixed_y_boxes>,
+     set_member<&SceneDef::fixed_y_boxes>},
     boolean<&SceneDef::has_self_contact>("self_contact", "enabled",
                                          "false switches self-contact off"),
     number<&SceneDef::self_friction>("self_contact", "friction", "", kNonNegative,
@@ -564,6 +592,8 @@ bool fields_need_new_mesh(const SceneDef& old, const SceneDef& next) {
   for (const auto& f : kFields)
     if (f.new_mesh && f.get(old) != f.get(next)) return true;
   if (old.bodies.size() != next.bodies.size()) return true;
+  // The tractions' nodal forces and pressure edges are found once per simulation.
+  if (old.tractions != next.tractions) return true;
   for (size_t k = 0; k < old.bodies.size(); ++k)
     for (const auto& f : kBodyFields)
       if (f.new_mesh && f.get(old.bodies[k]) != f.get(next.bodies[k])) return true;

@@ -19,6 +19,7 @@
 #include "scene_io/key_table.h"
 #include "scene_io/shape_files.h"
 #include "scene_io/toml_guard.h"
+#include "scene_io/traction_tables.h"
 
 namespace invfree {
 
@@ -144,6 +145,12 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
     if (k == "body") {
       if (auto r = scene_io::read_body_tables(node, bodies); !r.message.empty())
         return fail(r.line, r.message);
+      continue;
+    }
+    if (k == "traction") {
+      if (auto r = scene_io::read_traction_tables(node, s.tractions); !r.message.empty())
+        return fail(r.line, r.message);
+      for (const auto& key : scene_io::traction_keys()) lines["traction." + key] = line;
       continue;
     }
     if (k == "name") {
@@ -289,7 +296,7 @@ std::string scene_to_toml(const SceneDef& s) {
       if (k.kept && std::string_view(k.section) == section.name)
         out += std::string(k.key) + " = " + scene_io::write_field(k, s) + "\n";
   }
-  return out + scene_io::body_tables_to_toml(s);
+  return out + scene_io::body_tables_to_toml(s) + scene_io::traction_tables_to_toml(s);
 }
 
 }  // namespace invfree

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene_io/scene_keys.h"
+#include "scene_io/traction_tables.h"
 
 namespace invfree::test {
 
@@ -68,6 +69,14 @@ std::string scene_keys_markdown() {
     md += "| `" + k.key + "` | " + k.type + " | " + k.unit + " | " + range_or_choices(k) + " | " +
           (k.default_value.empty() ? "the scene's" : cell(shown(k.default_value))) + " | " +
           cell(k.doc) + " |\n";
+  md +=
+      "\n### [traction] or [[traction]]: boundary loads (docs/verification.md); none: no "
+      "load\n\n";
+  md += "| key | type | unit | range or values | default | meaning |\n";
+  md += "|---|---|---|---|---|---|\n";
+  for (const auto& k : traction_key_info())
+    md += "| `" + k.key + "` | " + k.type + " | " + k.unit + " | " + range_or_choices(k) + " | " +
+          cell(shown(k.default_value)) + " | " + cell(k.doc) + " |\n";
   return md + "\n" + kSceneKeysEnd + "\n";
 }
 
@@ -78,9 +87,11 @@ std::string fuzz_dictionary_block() {
   };
   for (const auto& section : scene_section_info()) add("[" + section.name + "]");
   add("[[body]]");
+  add("[[traction]]");
   add("name");
   for (const auto& k : scene_key_info()) add(k.key);
   for (const auto& k : body_key_info()) add(k.key);
+  for (const auto& k : traction_key_info()) add(k.key);
   for (const auto& k : scene_key_info())
     for (const auto& c : k.choices) add("\\\"" + c + "\\\"");  // \"c\": a TOML string
   std::string out = std::string(kFuzzDictBegin) + "\n";

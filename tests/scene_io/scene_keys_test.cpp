@@ -132,6 +132,11 @@ TEST(SceneKeys, EveryChoiceReadsAndWritesBack) {
       if (k.section == "fixed") {  // a box holding a node: "none" then selects that one
         s.fixed_box_min = s.fixed_box_max = Vec2(-0.5, -0.5);
       }
+      if (c == "static") {  // held against rigid motion: the bottom edge fixed, no planes
+        s.has_fixed = true;
+        s.fixed_corners = FixedCorners::Bottom;
+        s.has_ground = s.has_ceiling = false;
+      }
       // A polygon needs its outline; svg and mesh a file (tests/simulation/shape_scene_test).
       if (k.key == "shape" && (c == "svg" || c == "mesh")) continue;
       if (k.key == "shape") s.shape.outline = {Vec2(-0.5, -0.5), Vec2(0.5, -0.5), Vec2(0.0, 0.5)};
@@ -191,7 +196,8 @@ TEST(SceneKeys, NeedsNewMeshIsTheTablesColumn) {
                 "mesh.height",   "mesh.radius",     "mesh.inner_radius",   "mesh.outline",
                 "mesh.holes",    "mesh.file",       "mesh.path_id",        "mesh.scale",
                 "mesh.max_edge", "ceiling.enabled", "mass_spring.enabled", "fixed.enabled",
-                "fixed.corners", "fixed.box_min",   "fixed.box_max",       "fixed.boxes"}));
+                "fixed.corners", "fixed.box_min",   "fixed.box_max",       "fixed.boxes",
+                "fixed.components", "fixed.x_boxes", "fixed.y_boxes"}));
   // [[body]]: a body more or fewer, or its square, place or velocity; not its material.
   SceneDef two = base;
   two.bodies = {BodyDef{}, BodyDef{}};
