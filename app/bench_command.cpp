@@ -126,7 +126,7 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
   row.triangles = sim.mesh.triangle_count();
   row.dofs = 2 * row.nodes + (scene.has_ceiling ? 1 : 0);
   row.solver =
-      scene.integrator == Integrator::ImplicitEuler ? linear_solver_backend(sim) : "explicit";
+      scene.integrator != Integrator::SymplecticEuler ? linear_solver_backend(sim) : "explicit";
   std::vector<double> ms;
   ms.reserve(steps);
   long newton = 0, pcg = 0, factorizations = 0;

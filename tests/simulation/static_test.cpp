@@ -7,9 +7,11 @@
 
 #include <cmath>
 
+#include "make_terms.h"
 #include "scene/initial_state.h"
 #include "scene_io/scene_file.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 #include "triangle_fields.h"
 
 namespace invfree {
@@ -71,6 +73,53 @@ TEST(Static, ABarPulledByADeadLoadIsInUniformUniaxialTension) {
     EXPECT_NEAR(a.P(0, 1), 0.0, 1e-6 * p11);
     EXPECT_NEAR(uniaxial_p11(a.F(0, 0), sim.scene.lame), p11, 1e-6 * p11);
   }
+}
+
+// The static potential with a dead load and rollers, as Newton sees it: at a perturbed
+// state its gradient matches central differences of the energy on every free coordinate
+// (to 1e-6 of the load's scale; the energy is smooth there), and every held coordinate is
+// eliminated (gradient 0, an identity row in the Hessian), so rollers slide and hold.
+TEST(Static, TractionAndRollersMatchCentralDifferences) {
+  SceneDef s = pulled_bar(Vec2(2e3, -500.0), 4);
+  s.ramp_steps = 2;  // half the load in the first step: the factor reaches the terms
+  Simulation sim = make_simulation(s);
+  StepWorkspace& ws = *sim.workspace;
+  make_terms(sim, nullptr, ws.problem, ws.caches);
+  ASSERT_FALSE(ws.problem.inertia);
+  ASSERT_TRUE(ws.problem.dead_load.on);
+  EXPECT_EQ(ws.problem.dead_load.factor, 0.5);
+  VecX z = sim.x;
+  for (int k = 0; k < z.size(); ++k) z[k] += 1e-3 * std::sin(1.7 * k + 0.3);
+  VecX g;
+  ip_gradient_hessian(ws.problem, ws.caches, z, g, ws.newton.hessian);
+  const Eigen::MatrixXd H(ws.newton.hessian.matrix);
+  std::vector<char> held(z.size(), 0);
+  for (int dof : ws.problem.fixed.dofs) held[dof] = 1;
+  int free = 0;
+  const double eps = 1e-6;
+  for (int k = 0; k < z.size(); ++k) {
+    if (held[k]) {
+      EXPECT_EQ(g[k], 0.0) << k;
+      EXPECT_EQ(H(k, k), 1.0) << k;
+      for (int j = 0; j < z.size(); ++j)
+        if (j != k) EXPECT_EQ(H(k, j), 0.0) << k << "," << j;
+      continue;
+    }
+    ++free;
+    VecX plus = z, minus = z;
+    plus[k] += eps;
+    minus[k] -= eps;
+    const double fd =
+        (ip_energy(ws.problem, ws.caches, plus) - ip_energy(ws.problem, ws.caches, minus)) /
+        (2 * eps);
+    EXPECT_NEAR(g[k], fd, 1e-6 * 2e3) << "dof " << k;
+  }
+  // The left end's x and its bottom corner's y are held; everything else is free.
+  int left_end = 0;
+  for (const Vec2& p : sim.mesh.rest) left_end += std::abs(p.x() + 1.0) < 1e-12;
+  EXPECT_GE(left_end, 2);
+  EXPECT_EQ(ws.problem.fixed.dofs.size(), left_end + 1u);
+  EXPECT_EQ(free, z.size() - left_end - 1);
 }
 
 TEST(Static, RollersHoldOneCoordinateOnly) {
