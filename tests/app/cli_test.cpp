@@ -76,6 +76,46 @@ TEST(Cli, AShapeAndItsKeysInAnyOrder) {
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
+// A static scene with a dead load: it runs; an unsupported body, a traction box that holds
+// no edge and a NaN force are each one line naming the key, exit 2, before any step.
+TEST(Cli, StaticScenesAndTheirBadLoads) {
+  const std::string dir = ::testing::TempDir();
+  const std::string base =
+      "[mesh]\nshape = \"rectangle\"\nwidth = 2.0\nheight = 0.5\n"
+      "[solver]\nintegrator = \"static\"\n[time]\nh = 1.0\ntol = 1e-9\n";
+  const std::string held = "[fixed]\nbox_min = [-1.0, -0.25]\nbox_max = [-1.0, 0.25]\n";
+  auto traction = [](const std::string& box_min, const std::string& force,
+                     const std::string& box_max = "[1.0, 0.25]") {
+    return "[[traction]]\nbox_min = " + box_min + "\nbox_max = " + box_max + "\nforce = " + force +
+           "\n";
+  };
+  {
+    std::ofstream(dir + "/static_ok.toml") << base + held + traction("[1.0, -0.25]", "[0.0, -1.0]");
+  }
+  { std::ofstream(dir + "/static_free.toml") << base + traction("[1.0, -0.25]", "[0.0, -1.0]"); }
+  {
+    std::ofstream(dir + "/static_nobox.toml")
+        << base + held + traction("[0.2, -0.1]", "[0.0, -1.0]", "[0.3, 0.1]");
+  }
+  {
+    std::ofstream(dir + "/static_nan.toml")
+        << base + held + traction("[1.0, -0.25]", "[nan, -1.0]");
+  }
+  const CommandResult ok = run("simulate --steps 2 --scene " + dir + "/static_ok.toml");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  const std::pair<const char*, const char*> bad[] = {
+      {"static_free", "solver.integrator: static equilibrium needs every body held"},
+      {"static_nobox", "traction.box_min: the box [0.2, 0.3] x [-0.1, 0.1] holds no boundary edge"},
+      {"static_nan", "traction.force: element 0: expected a finite number"}};
+  for (const auto& [name, expected] : bad) {
+    const CommandResult r =
+        run(std::string("simulate --steps 2 --scene ") + dir + "/" + name + ".toml");
+    EXPECT_EQ(r.code, 2) << name;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << name << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
 TEST(Cli, BadInputExitsTwoWithOneLine) {
   const std::string dir = ::testing::TempDir();
   { std::ofstream(dir + "/bad_nu.toml") << "[material]\nE = 1e5\nnu = 0.7\n"; }
