@@ -159,6 +159,13 @@ void measure_patch(const Simulation& sim, CaseRun& r) {
   r.relative_error = worst / exact.lpNorm<Eigen::Infinity>();
 }
 
+// The fully clamped cantilever of cantilever.toml (L/H = 10, nu = 0.3, uniform end shear)
+// has no closed form: its tip deflection v E / P, converged with Taylor-Hood elements
+// (docs/verification.md, "Cantilever"; linear triangles up to 205,000 triangles,
+// Richardson-extrapolated, give 3658.7). Timoshenko's beam (3671.2) is 0.34% above it: the
+// clamp stops the end section's shear warping, which beam theory lets it have.
+constexpr double kClampedCantileverTipDeflection = 3658.8;
+
 // Clamped at the left end (min x), loaded at the right end: the tip is the right end's
 // mid-depth point.
 void measure_cantilever(const Simulation& sim, CaseRun& r) {
@@ -167,13 +174,17 @@ void measure_cantilever(const Simulation& sim, CaseRun& r) {
   const double P = -sim.scene.tractions.at(0).force.y();
   double E, nu;
   scene_young_poisson(sim.scene, &E, &nu);
+  if (std::abs(L / H - 10.0) > 1e-9 || std::abs(nu - 0.3) > 1e-9) {
+    r.failure = "the reference is for L/H = 10 and nu = 0.3";
+    return;
+  }
   const auto u = displacement_at(sim, Vec2(box.hi.x(), 0.5 * (box.lo.y() + box.hi.y())));
   if (!u) {
     r.failure = "no triangle holds the tip";
     return;
   }
   r.computed = -u->y();
-  r.reference = timoshenko_tip_deflection(L, H, P, E, nu);
+  r.reference = kClampedCantileverTipDeflection * P / E;
   r.relative_error = relative(r.computed, r.reference);
 }
 
