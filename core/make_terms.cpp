@@ -1,6 +1,7 @@
 #include "make_terms.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "solver/step_workspace.h"
 
@@ -75,6 +76,14 @@ void make_terms(const Simulation& sim, const Boundary* boundary, StepProblem& p,
   p.x_start = sim.x;
   p.x_tilde = sim.x + s.h * sim.v;
   p.inertia = !s.is_static();
+  p.energy_rounding = 0.0;
+  if (s.is_static() && s.has_triangle_elasticity()) {
+    double mu_area = 0.0;
+    for (int t = 0; t < sim.mesh.triangle_count(); ++t)
+      mu_area +=
+          sim.mesh.rest_area[t] * (sim.triangle_lame.empty() ? s.lame.mu : sim.triangle_lame[t].mu);
+    p.energy_rounding = 8.0 * std::numeric_limits<double>::epsilon() * s.h * s.h * mu_area;
+  }
   const double factor = load_factor(s, sim.step_count + 1);
   p.elasticity = {s.model, s.lame, s.projection, s.inversion_filter, s.has_triangle_elasticity()};
   p.elasticity.triangle_lame = sim.triangle_lame.empty() ? nullptr : sim.triangle_lame.data();
@@ -88,6 +97,7 @@ void make_terms(const Simulation& sim, const Boundary* boundary, StepProblem& p,
   p.gravity = {s.has_gravity, factor * s.gravity};
   p.dead_load.on = sim.node_load.size() == 2 * n;
   p.dead_load.force = sim.node_load.data();
+  p.dead_load.origin = sim.mesh.rest.data();
   p.dead_load.factor = factor;
   p.pressure.on = !sim.pressure_edges.empty();
   p.pressure.edges = &sim.pressure_edges;

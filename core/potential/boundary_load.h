@@ -1,7 +1,7 @@
 // The boundary loads of [traction] (scene/tractions.h), two terms of the potential, both of
 // kind Load and scaled by the step's load factor (the ramp, scene.h's load_factor):
-//  - DeadLoad, a node term: -factor f_i . x_i per node (f: the tables' forces spread over
-//    their edges). Linear in x: no Hessian.
+//  - DeadLoad, a node term: -factor f_i . (x_i - X_i) per node (f: the tables' forces spread
+//    over their edges, X the rest positions). Linear in x: no Hessian.
 //  - PressureLoad, a whole-mesh term: factor p A over whole boundary loops, A the loops'
 //    signed area in the boundary's orientation, A = sum over edges a -> b of 1/2 x_a x x_b.
 //    Its force on a node is p/2 times the normal of its two edges' chord, pointing into the
@@ -23,10 +23,16 @@ struct DeadLoad {
   static constexpr EnergyKind kind = EnergyKind::Load;
   bool on = false;
   const double* force = nullptr;  // 2N
+  // The rest positions: the work is measured from them, -f.(x - X), the same potential up
+  // to a constant. From the origin, -f.x would add a constant as large as |f| times the
+  // body's distance from the origin, and its rounding would drown the energy differences
+  // of a small-strain static solve (Newton compares energies to 64 eps |E|).
+  const Vec2* origin = nullptr;
   double factor = 1.0;
 
   double value(const NodeState& s) const {
-    return -factor * (force[2 * s.index] * s.x + force[2 * s.index + 1] * s.y);
+    const Vec2& o = origin[s.index];
+    return -factor * (force[2 * s.index] * (s.x - o.x()) + force[2 * s.index + 1] * (s.y - o.y()));
   }
   void add_derivatives(const NodeState& s, double scale, NodeDerivatives& d) const {
     d.gx -= scale * factor * force[2 * s.index];

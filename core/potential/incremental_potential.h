@@ -49,6 +49,10 @@ struct StepProblem {
   VecX x_tilde;         // x^n + h v^n (2N): inertia's target
   VecX x_start;         // x^n (2N): lagged friction's reference
   bool inertia = true;  // false: a static step (equilibrium, no 1/2 |x - x_tilde|^2_M)
+  // A bound of E's rounding error beyond Newton's 64 eps (|E| + 1) (newton.cpp): in a static
+  // step, 8 eps h^2 sum_t area_t mu_t, the rounding of mu/2 (tr F^T F - 2) - mu ln J, two
+  // terms of size mu that cancel near F = I; 0 in a dynamic step, whose inertia dominates.
+  double energy_rounding = 0.0;
 
   // The terms.
   Gravity gravity;

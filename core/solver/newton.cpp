@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-
 namespace invfree {
 
 namespace {
@@ -170,12 +169,15 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, StepCaches& ca
     const double alpha = newton.feasible_step(z, ws.direction);
     result.line_search_ms += ms_since(t);
     // Near convergence the decrease a step can bring, -alpha g.p, falls below the rounding
-    // noise of E itself (~1e-16 |E|): comparing energies is meaningless there and
+    // noise of E itself (~1e-16 |E|, and in a static step the cancelling terms of the
+    // elastic energy near F = I, StepProblem::energy_rounding): comparing energies is
+    // meaningless there and
     // backtracking would stall, so the filtered step is taken as it is (the stopping test
     // is unchanged).
     const double predicted_decrease = -alpha * ws.gradient.dot(ws.direction);
     const double energy_noise =
-        64.0 * std::numeric_limits<double>::epsilon() * (std::abs(energy) + 1.0);
+        64.0 * std::numeric_limits<double>::epsilon() * (std::abs(energy) + 1.0) +
+        problem.energy_rounding;
     if (predicted_decrease >= 0.0 && predicted_decrease < energy_noise) {
       ws.trial = z + alpha * ws.direction;
       const double trial_energy = newton.energy(ws.trial);

@@ -169,9 +169,11 @@ TEST(DeadLoad, TheNodalForcesAddUpToTheTableAndFollowEdgeLength) {
 
 TEST(DeadLoad, ItsDerivativesAreMinusTheForce) {
   const double force[4] = {1.5, -2.0, 0.25, 4.0};
+  const Vec2 rest[2] = {Vec2(0.0, 0.0), Vec2(0.1, -0.5)};
   DeadLoad load;
   load.on = true;
   load.force = force;
+  load.origin = rest;
   load.factor = 0.5;
   NodeState s;
   s.index = 1;
@@ -182,7 +184,8 @@ TEST(DeadLoad, ItsDerivativesAreMinusTheForce) {
   EXPECT_DOUBLE_EQ(d.gx, -2.0 * 0.5 * 0.25);
   EXPECT_DOUBLE_EQ(d.gy, -2.0 * 0.5 * 4.0);
   EXPECT_EQ(d.hxx, 0.0);
-  EXPECT_DOUBLE_EQ(load.value(s), -0.5 * (0.25 * 0.3 + 4.0 * -0.7));
+  // The work from the rest position: -f.(x - X).
+  EXPECT_DOUBLE_EQ(load.value(s), -0.5 * (0.25 * (0.3 - 0.1) + 4.0 * (-0.7 + 0.5)));
 }
 
 }  // namespace

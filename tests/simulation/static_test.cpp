@@ -164,6 +164,39 @@ TEST(Static, ARampEndsAtTheEquilibriumOfOneStep) {
   EXPECT_NEAR((half - x0).lpNorm<Eigen::Infinity>(), 0.5 * full_deflection, 1e-3 * full_deflection);
 }
 
+// A small-strain static solve converges to a tolerance far below its deflection: a 10 x 1
+// cantilever (E = 1e7) under 1 N/m deflects 3.7e-4 m and stops at |p| < 1e-9 m. Near F = I
+// the elastic energy's rounding (8 eps mu area ~ 7e-8 J here) exceeds the last Newton
+// steps' decrease (~1e-10 J); comparing energies there stalled the line search until
+// Newton's iteration cap before StepProblem::energy_rounding.
+TEST(Static, ASmallStrainSolveConvergesBelowTheEnergysRounding) {
+  for (int n_seg : {10, 20, 40}) {
+    SceneDef s;
+    s.shape.kind = ShapeKind::Polygon;
+    s.shape.outline = {Vec2(0.0, -0.5), Vec2(10.0, -0.5), Vec2(10.0, 0.5), Vec2(0.0, 0.5)};
+    s.n_seg = n_seg;
+    s.mass = MassMode::Lumped;
+    s.lame = lame_from_young_poisson(1e7, 0.3);
+    s.integrator = Integrator::Static;
+    s.h = 1.0;
+    s.tol = 1e-9;
+    s.has_gravity = s.has_ground = s.has_ceiling = false;
+    s.has_fixed = true;
+    s.fixed_box_min = Vec2(0.0, -0.5);
+    s.fixed_box_max = Vec2(0.0, 0.5);
+    TractionDef t;
+    t.box_min = Vec2(10.0, -0.5);
+    t.box_max = Vec2(10.0, 0.5);
+    t.force = Vec2(0.0, -1.0);
+    s.tractions = {t};
+    ASSERT_EQ(validate_scene(s), "");
+    Simulation sim = make_simulation(s);
+    const StepReport r = step(sim);
+    EXPECT_EQ(r.status, StepStatus::Ok) << "n_seg " << n_seg << ": " << r.message;
+    EXPECT_LE(r.newton_iterations, 5) << n_seg;
+  }
+}
+
 // A thick ring (radii 0.5 and 1) with pressure p in its hole: Lame's plane-strain solution
 // u_r(a) = p a^2 / (2 mu (b^2 - a^2)) ((1 - 2 nu) a + b^2 / a). Polygons with nodes on the
 // axes; the four outer axis nodes held across the axis (the exact solution moves them along
