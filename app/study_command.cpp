@@ -1,7 +1,9 @@
 // `invfree study`: speed against accuracy of every method on one scene (app/study/study.h).
 // Writes DIR/study.csv, DIR/study.png (error against wall time with the Pareto front, and
 // error against h with the fitted convergence slope) and DIR/study-sweeps.png (Newton
-// tolerance and mesh resolution sweeps). Progress goes to stderr, a summary to stdout.
+// tolerance and mesh resolution sweeps), and the error against the exact answer: every model
+// family's static cantilever against beam theory (app/verify/exact_study.h), a panel of
+// study.png and DIR/study-exact.csv. Progress goes to stderr, a summary to stdout.
 #include <cstdio>
 
 #include "app/command.h"
@@ -14,6 +16,7 @@
 #include "app/study/study.h"
 #include "app/study/study_chart.h"
 #include "app/sweep_command.h"
+#include "app/verify/exact_study.h"
 
 namespace invfree {
 
@@ -29,18 +32,24 @@ int run_study_command(const StudyCommandOptions& opt) {
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
   const std::string csv_path = opt.sweep.out + "/study.csv",
+                    exact_path = opt.sweep.out + "/study-exact.csv",
                     ext = chart_extension(opt.sweep.format),
                     png_path = opt.sweep.out + "/study." + ext,
                     sweeps_path = opt.sweep.out + "/study-sweeps." + ext;
-  if (auto e = check_output_files({csv_path, png_path, sweeps_path}, opt.scene.input_files(),
-                                  opt.sweep.force))
+  if (auto e = check_output_files({csv_path, exact_path, png_path, sweeps_path},
+                                  opt.scene.input_files(), opt.sweep.force))
     return fail(e.exit_code, e.message);
 
-  const StudyResult result = run_study(*scene, sweep_options(opt.sweep, "study"));
+  const SweepOptions sweep = sweep_options(opt.sweep, "study");
+  const StudyResult result = run_study(*scene, sweep);
   if (result.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
+  const ExactStudy exact = run_exact_study(sweep);
+  if (exact.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
+  std::vector<ChartSpec> panels = study_panels(result);
+  panels.push_back(exact_study_panel(exact));
   error = write_file_atomically(csv_path, study_csv(result));
-  if (error.empty())
-    error = write_canvas(png_path, *chart_canvas(study_panels(result), opt.sweep.format));
+  if (error.empty()) error = write_file_atomically(exact_path, exact_study_csv(exact));
+  if (error.empty()) error = write_canvas(png_path, *chart_canvas(panels, opt.sweep.format));
   if (error.empty())
     error = write_canvas(sweeps_path, *chart_canvas(sweeps_panels(result), opt.sweep.format));
   if (!error.empty()) return fail(exit_code::kOutputFailed, error);
@@ -49,9 +58,10 @@ int run_study_command(const StudyCommandOptions& opt) {
   for (const StudyRow& r : result.rows) failed += r.failure != "ok";
   std::printf(
       "study of %s: %zu runs (%d failed), implicit Euler error slope %.2f, %.1f s in the solver; "
-      "wrote %s, %s, %s\n",
+      "%zu static solves against the exact answer; wrote %s, %s, %s, %s\n",
       scene->name.c_str(), result.rows.size(), failed, result.lecture_slope, result.total_wall_s,
-      csv_path.c_str(), png_path.c_str(), sweeps_path.c_str());
+      exact.rows.size(), csv_path.c_str(), exact_path.c_str(), png_path.c_str(),
+      sweeps_path.c_str());
   for (const std::string& f : result.reference_failures)
     std::fprintf(stderr, "invfree: warning: %s\n", f.c_str());
   return exit_code::kOk;
@@ -62,12 +72,14 @@ int run_study_command(const StudyCommandOptions& opt) {
 void register_study_command(CLI::App& app, int& exit_code) {
   auto [cmd, opt] = add_command<StudyCommandOptions>(
       app, exit_code, "study",
-      "speed against accuracy: sweep h, Newton tol and mesh resolution for every method; write "
-      "study.csv, study.png, study-sweeps.png",
+      "speed against accuracy: sweep h, Newton tol and mesh resolution for every method, and "
+      "every model's static cantilever against the exact answer; write study.csv, "
+      "study-exact.csv, study.png, study-sweeps.png",
       run_study_command);
   opt.scene.add_to(cmd);
   add_sweep_options(cmd, opt.sweep,
-                    "directory for study.csv, study.png and study-sweeps.png (or .svg, .pdf)",
+                    "directory for study.csv, study-exact.csv, study.png and study-sweeps.png "
+                    "(or .svg, .pdf)",
                     "fewer h, tolerances and meshes, and a coarser reference (docs/study.md)");
 }
 

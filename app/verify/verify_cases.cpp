@@ -36,7 +36,7 @@ const std::vector<VerifyCase>& cases() {
        "cantilever",
        "cantilever: tip deflection",
        "tip deflection -v(L, 0) (m)",
-       "Timoshenko beam, plane strain",
+       "the clamped beam's converged 3658.8 P/E (Timoshenko's beam is 0.34% above)",
        -1.0,
        {10, 20, 40, 80, 160, 320},
        {10, 20, 40, 80}},
