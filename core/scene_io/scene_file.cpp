@@ -240,6 +240,9 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   const size_t dot = lhs.find('.');
   if (dot == std::string::npos) return where + ": expected section.key=value";
   const std::string section = lhs.substr(0, dot), key = lhs.substr(dot + 1);
+  if (section == "body" || section == "traction")
+    return where + ": " + section + ": [[" + section +
+           "]] tables are set in the scene file; --set reaches the sections' keys only";
   if (!find_scene_section(section))
     return where + ": " + printable(section) + ": " + unknown_section_error(section);
   const SceneField* spec = find_scene_field(section, key);

@@ -207,6 +207,12 @@ TEST(Overrides, ApplyAndValidate) {
   EXPECT_NE(apply_override(s, "time.h=0").find("time.h"), std::string::npos);
   EXPECT_NE(apply_override(s, "time.hh=0.1").find("did you mean \"h\""), std::string::npos);
   EXPECT_NE(apply_override(s, "timing.h=0.1").find("unknown section"), std::string::npos);
+  // The array tables are the scene file's: --set says so instead of "unknown section".
+  EXPECT_EQ(apply_override(s, "traction.force=[1, 0]"),
+            "--set traction.force=[1, 0]: traction: [[traction]] tables are set in the scene "
+            "file; --set reaches the sections' keys only");
+  EXPECT_NE(apply_override(s, "body.side=2").find("[[body]] tables are set in the scene file"),
+            std::string::npos);
   EXPECT_NE(apply_override(s, "time.h").find("expected section.key=value"), std::string::npos);
   EXPECT_NE(apply_override(s, "ground.y=0").find("ground.y"), std::string::npos);
   EXPECT_TRUE(s == before) << "a rejected override must leave the scene unchanged";
