@@ -2,7 +2,7 @@
 // and stderr captured into files named after this process and call (ctest runs tests in
 // parallel processes), the exit code decoded (-1 when the process did not exit
 // normally). `headless` removes DISPLAY and WAYLAND_DISPLAY and gives stdin /dev/null;
-// `env` ("NAME=value ...") is set for the command only.
+// `env` ("NAME=value ...") is set for the command only. And the CSV files they check.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace invfree::test {
 
@@ -50,6 +51,21 @@ inline CommandResult run_command(const std::string& exe, const std::string& args
   std::remove(out.c_str());
   std::remove(err.c_str());
   return r;
+}
+
+// A CSV file's rows, split at commas (no quoting: the program's CSVs have none); a line
+// ending in a comma has an empty last cell.
+inline std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    rows.push_back(cells);
+  }
+  return rows;
 }
 
 }  // namespace invfree::test

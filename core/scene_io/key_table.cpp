@@ -79,6 +79,8 @@ std::string read_bool(const toml::node& n, bool& out) {
   return "";
 }
 
+}  // namespace
+
 std::string read_vec2(const toml::node& n, Vec2& out) {
   const toml::array* a = n.as_array();
   if (!a || a->size() != 2) return "expected an array of two numbers, e.g. [0.0, -9.81]";
@@ -87,8 +89,6 @@ std::string read_vec2(const toml::node& n, Vec2& out) {
       return "element " + std::to_string(k) + ": " + r;
   return "";
 }
-
-}  // namespace
 
 std::string read_points(const toml::node& n, Loop& out) {
   const toml::array* a = n.as_array();

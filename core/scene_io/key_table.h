@@ -42,6 +42,8 @@ std::string read_points(const toml::node& value, Loop& out);
 std::string read_loops(const toml::node& value, std::vector<Loop>& out);
 // A finite number (integer or float) into out; "" or the reason.
 std::string read_number(const toml::node& value, double& out);
+// [x, y] of finite numbers into out; "" or the reason ("element 0: must be a finite number").
+std::string read_vec2(const toml::node& value, Vec2& out);
 // "" when v is within the core's range for `key` ("mesh.side"), else the requirement.
 std::string bounds_problem(std::string_view key, double v);
 

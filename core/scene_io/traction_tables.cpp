@@ -33,19 +33,6 @@ constexpr TractionKey kKeys[] = {
      false, nullptr, &TractionDef::pressure},
 };
 
-std::string vec2_of(const toml::node& n, Vec2& out) {
-  const toml::array* a = n.as_array();
-  if (!a || a->size() != 2) return "expected an array of two numbers, e.g. [0.0, -1.0]";
-  for (int k = 0; k < 2; ++k) {
-    const toml::node& e = *a->get(k);
-    const auto v = e.value<double>();
-    if (!v || !(e.is_integer() || e.is_floating_point()) || !std::isfinite(*v))
-      return "element " + std::to_string(k) + ": expected a finite number";
-    out[k] = *v;
-  }
-  return "";
-}
-
 TractionError read_table(const toml::table& t, const std::string& which, TractionDef& out) {
   const std::vector<std::string> keys = traction_keys();
   for (auto&& [key, value] : t) {
@@ -59,11 +46,10 @@ TractionError read_table(const toml::table& t, const std::string& which, Tractio
                         " (keys of [traction]: " + join_words(keys) + ")" + which};
     std::string r;
     if (spec->vector) {
-      r = vec2_of(value, out.*(spec->vec));
+      r = read_vec2(value, out.*(spec->vec));
     } else {
       double v = 0.0;
       r = read_number(value, v);
-      if (r.empty() && !std::isfinite(v)) r = "must be a finite number";
       if (r.empty()) out.*(spec->number) = v;
     }
     if (!r.empty()) return {line, "traction." + name + ": " + r + which};

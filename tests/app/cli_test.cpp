@@ -106,7 +106,7 @@ TEST(Cli, StaticScenesAndTheirBadLoads) {
   const std::pair<const char*, const char*> bad[] = {
       {"static_free", "solver.integrator: static equilibrium needs every body held"},
       {"static_nobox", "traction.box_min: the box [0.2, 0.3] x [-0.1, 0.1] holds no boundary edge"},
-      {"static_nan", "traction.force: element 0: expected a finite number"}};
+      {"static_nan", "traction.force: element 0: must be a finite number"}};
   for (const auto& [name, expected] : bad) {
     const CommandResult r =
         run(std::string("simulate --steps 2 --scene ") + dir + "/" + name + ".toml");

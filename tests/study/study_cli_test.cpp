@@ -20,6 +20,7 @@
 #include "app/study/error.h"
 #include "app/study/methods.h"
 #include "app/study/stress_scenes.h"
+#include "tests/run_command.h"
 #include "tests/test_paths.h"
 
 namespace invfree {
@@ -60,16 +61,7 @@ fs::path fresh_dir(const std::string& name) {
 }
 
 std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
-  std::vector<std::vector<std::string>> rows;
-  std::ifstream in(p);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
-    if (!line.empty() && line.back() == ',') cells.push_back("");
-    rows.push_back(cells);
-  }
-  return rows;
+  return test::read_csv(p.string());
 }
 
 bool is_png(const fs::path& p) {

@@ -30,6 +30,7 @@
 #include "app/verify/verify_cases.h"
 #include "app/verify/verify_scenes.h"
 #include "scene_io/builtin_scenes.h"
+#include "tests/run_command.h"
 #include "tests/test_paths.h"
 
 namespace invfree {
@@ -218,17 +219,8 @@ TEST(VerifyCases, TheTableAndTheCsvHoldEveryRun) {
 
 // ---- The command, as a user runs it -------------------------------------------------------
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun run(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd =
-      std::string(test::exe_path()) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+test::CommandResult run(const std::string& args) {
+  return test::run_command(test::exe_path(), args, false);
 }
 
 fs::path fresh_dir(const std::string& name) {
@@ -239,30 +231,17 @@ fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
-std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
-  std::vector<std::vector<std::string>> rows;
-  std::ifstream in(p);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
-    if (!line.empty() && line.back() == ',') cells.push_back("");
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 TEST(VerifyCommand, QuickRunWritesTheCsvAndTheChart) {
   const fs::path dir = fresh_dir("quick");
   const fs::path out = dir / "out";
-  const CliRun r =
-      run("verify --quick --quiet --cases patch,cantilever --out " + out.string(), dir);
+  const test::CommandResult r =
+      run("verify --quick --quiet --cases patch,cantilever --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");  // --quiet
   EXPECT_NE(r.out.find("cantilever: fitted slope"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("wrote " + (out / "verify.csv").string()), std::string::npos) << r.out;
 
-  const auto rows = read_csv(out / "verify.csv");
+  const auto rows = test::read_csv((out / "verify.csv").string());
   ASSERT_EQ(rows.size(), 1 + case_named("patch").quick_levels.size() +
                              case_named("cantilever").quick_levels.size());
   const std::vector<std::string>& head = rows[0];
@@ -289,13 +268,14 @@ TEST(VerifyCommand, QuickRunWritesTheCsvAndTheChart) {
   EXPECT_EQ(png.rfind("\x89PNG\r\n\x1a\n", 0), 0u);
 
   // Run again: the outputs exist, so without --force it is refused (exit 2, one line) ...
-  const CliRun again = run("verify --quick --quiet --cases patch --out " + out.string(), dir);
+  const test::CommandResult again =
+      run("verify --quick --quiet --cases patch --out " + out.string());
   EXPECT_EQ(again.code, 2);
   EXPECT_NE(again.err.find("exists; use --force"), std::string::npos) << again.err;
   EXPECT_EQ(again.err.find('\n'), again.err.size() - 1) << again.err;
   // ... and with --force, as SVG, it writes.
-  const CliRun svg =
-      run("verify --quick --quiet --cases patch --format svg --force --out " + out.string(), dir);
+  const test::CommandResult svg =
+      run("verify --quick --quiet --cases patch --format svg --force --out " + out.string());
   EXPECT_EQ(svg.code, 0) << svg.err;
   EXPECT_NE(slurp(out / "verify.svg").find("<svg"), std::string::npos);
   fs::remove_all(dir);
@@ -303,7 +283,8 @@ TEST(VerifyCommand, QuickRunWritesTheCsvAndTheChart) {
 
 TEST(VerifyCommand, AnUnknownCaseIsOneLineAndExit2) {
   const fs::path dir = fresh_dir("bad");
-  const CliRun r = run("verify --cases patch,cantelever --out " + (dir / "out").string(), dir);
+  const test::CommandResult r =
+      run("verify --cases patch,cantelever --out " + (dir / "out").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(
       r.err,
