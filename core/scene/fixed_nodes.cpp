@@ -41,12 +41,11 @@ bool box_is_empty(const SceneDef& s) {
 }
 
 bool in_box(const SceneDef& s, const Vec2& p, double tol) {
-  return (p.array() >= s.fixed_box_min.array() - tol).all() &&
-         (p.array() <= s.fixed_box_max.array() + tol).all();
+  return in_rest_box(s.fixed_box_min, s.fixed_box_max, p, tol);
 }
 
 bool in_extra_box(const Loop& box, const Vec2& p, double tol) {
-  return (p.array() >= box[0].array() - tol).all() && (p.array() <= box[1].array() + tol).all();
+  return in_rest_box(box[0], box[1], p, tol);
 }
 
 bool in_any_extra_box(const SceneDef& s, const Vec2& p, double tol) {
@@ -65,6 +64,14 @@ bool at_corner(FixedCorners set, const Box& b, const Vec2& p, double tol) {
 }
 
 }  // namespace
+
+double rest_box_tolerance(const Mesh& mesh) {
+  return mesh.rest.empty() ? 0.0 : tolerance(rest_bounds(mesh));
+}
+
+bool in_rest_box(const Vec2& lo, const Vec2& hi, const Vec2& p, double tol) {
+  return (p.array() >= lo.array() - tol).all() && (p.array() <= hi.array() + tol).all();
+}
 
 std::vector<int> select_fixed_nodes(const SceneDef& s, const Mesh& mesh) {
   std::vector<int> nodes;

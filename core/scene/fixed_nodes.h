@@ -14,6 +14,12 @@
 
 namespace invfree {
 
+// The rule of every rest-space box ([fixed]'s boxes, [traction]'s): a point is in [lo, hi]
+// within rest_box_tolerance, 1e-9 of the rest mesh's size (rest positions are sums of
+// multiples of side / n_seg: far below an edge, far above rounding).
+double rest_box_tolerance(const Mesh& mesh);
+bool in_rest_box(const Vec2& lo, const Vec2& hi, const Vec2& p, double tol);
+
 // The nodes the rule selects; empty when the scene has no [fixed] section.
 std::vector<int> select_fixed_nodes(const SceneDef& scene, const Mesh& mesh);
 

@@ -5,25 +5,11 @@
 #include <cstdio>
 #include <map>
 
+#include "scene/fixed_nodes.h"
+
 namespace invfree {
 
 namespace {
-
-// The same tolerance as the fixed boxes' (fixed_nodes.cpp): far below an edge, far above
-// rounding.
-double box_tolerance(const Mesh& mesh) {
-  Vec2 lo = mesh.rest[0], hi = mesh.rest[0];
-  for (const Vec2& p : mesh.rest) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return 1e-9 * std::max(1.0, (hi - lo).maxCoeff());
-}
-
-bool in_box(const TractionDef& t, const Vec2& p, double tol) {
-  return (p.array() >= t.box_min.array() - tol).all() &&
-         (p.array() <= t.box_max.array() + tol).all();
-}
 
 std::string which_table(const SceneDef& s, size_t k) {
   return s.tractions.size() > 1 ? " (in [[traction]] " + std::to_string(k + 1) + ")" : "";
@@ -45,10 +31,10 @@ bool whole_loops(const std::vector<int>& edges, const Boundary& boundary) {
 std::vector<int> traction_edges(const TractionDef& t, const Mesh& mesh, const Boundary& boundary) {
   std::vector<int> out;
   if ((t.box_min.array() > t.box_max.array()).any() || mesh.rest.empty()) return out;
-  const double tol = box_tolerance(mesh);
+  const double tol = rest_box_tolerance(mesh);
   for (int e = 0; e < boundary.edge_count(); ++e)
-    if (in_box(t, mesh.rest[boundary.edges[e][0]], tol) &&
-        in_box(t, mesh.rest[boundary.edges[e][1]], tol))
+    if (in_rest_box(t.box_min, t.box_max, mesh.rest[boundary.edges[e][0]], tol) &&
+        in_rest_box(t.box_min, t.box_max, mesh.rest[boundary.edges[e][1]], tol))
       out.push_back(e);
   return out;
 }
