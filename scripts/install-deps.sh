@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev          # core, scenes, command line
   libpugixml-dev                                          # SVG shape files (XML)
   libcgal-dev                                             # meshing shapes (CGAL, GPL: see LICENSE)
+  libspectra-dev                                          # sparse eigenpairs (modal basis, modes)
   libgtest-dev libbenchmark-dev                           # tests, benchmarks
   libsuitesparse-dev libopenblas0-pthread                 # CHOLMOD direct solver
   libosmesa6-dev libglfw3-dev libimgui-dev libstb-dev     # offscreen and live rendering

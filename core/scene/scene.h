@@ -4,6 +4,7 @@
 // files (assets/scenes/), read by the scene_io library.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -78,6 +79,20 @@ struct TractionDef {
 // The largest number of [[traction]] tables a scene may list.
 constexpr int kMaxTractions = 64;
 
+// [mass_spring] law: the spring's energy (potential/mass_spring.h). Green: the course's
+// chapter 1, E = 1/2 k l^2 (|d|^2/l^2 - 1)^2; Hooke: chapter 0's linear spring,
+// E = 1/2 k (|d| - l)^2.
+enum class SpringLaw { Green, Hooke };
+inline constexpr EnumName<SpringLaw> kSpringLawNames[] = {{SpringLaw::Green, "green"},
+                                                          {SpringLaw::Hooke, "hooke"}};
+
+// [reduced] basis: Newton's step restricted to a subspace, x = x^0 + B q (the course's
+// chapter 9; scene/reduced_basis.h). Full: no reduction.
+enum class ReducedBasis { Full, Polynomial, Modal };
+inline constexpr EnumName<ReducedBasis> kReducedBasisNames[] = {
+    {ReducedBasis::Full, "full"}, {ReducedBasis::Polynomial, "polynomial"},
+    {ReducedBasis::Modal, "modal"}};
+
 // [mesh] mass (scene/mesh.h's MassMode), as a scene file spells it.
 inline constexpr EnumName<MassMode> kMassModeNames[] = {{MassMode::Uniform, "uniform"},
                                                         {MassMode::Lumped, "lumped"}};
@@ -118,6 +133,9 @@ struct SceneDef {
   int n_seg = 4;
   double density = 1000.0;
   MassMode mass = MassMode::Uniform;
+  // Every node's mass (kg) when > 0 (the course's chapter 0: 1000 kg particles); 0: from
+  // density and `mass`.
+  double node_mass = 0.0;
   double jitter = 0.0;  // random initial node displacement, as a fraction of the edge length
   std::uint64_t seed = 1;
   // [mesh] shape, width, height, radius, inner_radius, outline, holes, file, path_id, scale,
@@ -162,6 +180,12 @@ struct SceneDef {
   // (potential/mass_spring.h) instead of the triangles' elasticity.
   bool has_mass_spring = false;
   double spring_stiffness = 1e5;  // k (N/m)
+  SpringLaw spring_law = SpringLaw::Green;
+  // Node index pairs; empty: the mesh's edges and both diagonals of every cell.
+  std::vector<std::array<int, 2>> springs;
+  // [gravity] per_spring: gravity added to a node once per spring it ends (the course's
+  // chapter 0 simulator2.py adds it inside its spring loop); false: once per node.
+  bool gravity_per_spring = false;
   // [fixed]: nodes held at their initial positions (Dirichlet, eliminated by the solver),
   // chosen by rules in rest space over all nodes: corners of the rest bounding box and/or
   // the nodes inside a box (an empty box, min > max, selects none). scene/fixed_nodes.h.
@@ -187,6 +211,11 @@ struct SceneDef {
   bool has_self_contact = false;
   double self_friction = 0.0;    // point-edge friction coefficient (potential/self_friction.h)
   bool self_contact_ccd = true;  // false: the line search's CCD filter is off (a study row)
+  // [reduced]: the subspace of Newton's steps; `order` 1-3 of the polynomial basis (1:
+  // affine), `modes` eigenvectors of the rest-shape Hessian for the modal one.
+  ReducedBasis reduced_basis = ReducedBasis::Full;
+  int reduced_order = 1;
+  int reduced_modes = 6;
   // [[body]]: the scene's bodies, in node order. Empty: one body, the [mesh] square at the
   // origin (every scene file without [[body]] tables).
   std::vector<BodyDef> bodies;

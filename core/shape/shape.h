@@ -17,11 +17,12 @@
 
 namespace invfree {
 
-enum class ShapeKind { Square, Rectangle, Disk, Ring, Polygon, Svg, MeshFile };
+// Points: particles only, no triangles (the course's chapter 0: free fall, a spring).
+enum class ShapeKind { Square, Rectangle, Disk, Ring, Polygon, Svg, MeshFile, Points };
 inline constexpr EnumName<ShapeKind> kShapeKindNames[] = {
     {ShapeKind::Square, "square"}, {ShapeKind::Rectangle, "rectangle"}, {ShapeKind::Disk, "disk"},
     {ShapeKind::Ring, "ring"},     {ShapeKind::Polygon, "polygon"},     {ShapeKind::Svg, "svg"},
-    {ShapeKind::MeshFile, "mesh"}};
+    {ShapeKind::MeshFile, "mesh"}, {ShapeKind::Points, "points"}};
 
 // Which regions of a set of closed paths are inside (SVG's fill-rule).
 enum class FillRule { NonZero, EvenOdd };
@@ -48,6 +49,7 @@ struct ShapeDef {
   double radius = 0.5, inner_radius = 0.25;  // disk (radius), ring (both)
   Loop outline;                              // polygon
   std::vector<Loop> holes;                   // polygon
+  std::vector<Vec2> points;                  // points: the particles' rest positions
   std::string file;       // svg, mesh: as the scene gives it (relative to the scene file)
   std::string path_id;    // svg: the one path to use ("": every closed path of the drawing)
   double scale = 0.01;    // svg: metres per SVG user unit

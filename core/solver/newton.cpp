@@ -55,6 +55,7 @@ struct Newton {
     ip_gradient_hessian(p, caches, z, ws.gradient, ws.hessian);
     ws.rhs = -ws.gradient;
     result.assembly_ms += ms_since(t);
+    if (ws.reduced.on()) return reduced_direction();
     prepare_linear_solver(ws, settings.linear_solver, settings.projected);
     SolveRequest request;
     request.threshold = settings.tol * p.h;
@@ -66,6 +67,28 @@ struct Newton {
       request.forcing = 1e-13;  // no error bound: as exact as a direct solve
     }
     return ws.solver.solve(ws.hessian.matrix, ws.rhs, ws.direction, request, result.linear);
+  }
+
+  // The subspace's step: B^T H B and -B^T g (counted as assembly), their dense LDL^T
+  // (factorisation), q and p = B q (solve).
+  bool reduced_direction() {
+    ReducedSolve& r = ws.reduced;
+    auto t = Clock::now();
+    r.hessian_times_basis.noalias() = ws.hessian.matrix * r.basis;
+    r.hessian.noalias() = r.basis.transpose() * r.hessian_times_basis;
+    r.rhs.noalias() = r.basis.transpose() * ws.rhs;
+    result.assembly_ms += ms_since(t);
+    t = Clock::now();
+    r.factor.compute(r.hessian);
+    result.linear.factor_ms += ms_since(t);
+    ++result.linear.factorizations;
+    if (r.factor.info() != Eigen::Success) return false;
+    t = Clock::now();
+    r.step = r.factor.solve(r.rhs);
+    ws.direction.noalias() = r.basis * r.step;
+    result.linear.solve_ms += ms_since(t);
+    ++result.linear.solves;
+    return ws.direction.allFinite();
   }
 
   // Backtracking from the filtered step: the trial z + alpha p (friction crossings stopped)

@@ -1,7 +1,8 @@
 // Projected Newton minimisation of one step's incremental potential (lecture 9's demo):
 //   start:  z = x^n, or (while the ceiling moves) x^n moved toward the inertial prediction
 //           x^n + h v^n as far as the line-search filters allow (a feasible warm start)
-//   repeat: p = -H^-1 g (H projected to PSD);  stop when |p|_inf / h < tol
+//   repeat: p = -H^-1 g (H projected to PSD), or with a reduced basis B the subspace's
+//           p = -B (B^T H B)^-1 B^T g;  stop when |p|_inf / h < tol
 //           alpha = min(1, every term's filter)           (largest_safe_step)
 //           halve alpha until E(z + alpha p) <= E(z);  z += alpha p
 // The ceiling (the demo's moving Dirichlet boundary) is an unknown pulled to its target by
@@ -47,6 +48,8 @@
 // minimum (or the last iterate on failure) and a report; never loops forever.
 #pragma once
 
+#include <Eigen/Dense>
+
 #include "linalg/linear_solver.h"
 #include "potential/incremental_potential.h"
 #include "solver/friction_crossing.h"
@@ -85,8 +88,19 @@ struct NewtonResult {
   LinearSolveStats linear;
 };
 
+// Newton's step in a subspace (scene/reduced_basis.h): p = B (B^T H B)^-1 (-B^T g), the
+// r x r system dense and factorised by LDL^T.
+struct ReducedSolve {
+  Eigen::MatrixXd basis;  // B, 2N x r; empty: the step is solved in full space
+  Eigen::MatrixXd hessian_times_basis, hessian;  // H B and B^T H B
+  VecX rhs, step;                                // -B^T g and q
+  Eigen::LDLT<Eigen::MatrixXd> factor;
+  bool on() const { return basis.size() != 0; }
+};
+
 struct NewtonWorkspace {
   SparseHessian hessian;
+  ReducedSolve reduced;
   LinearSolver solver;  // set up by the caller for the hessian's pattern
   VecX gradient, rhs, direction, trial, trial2;
   double min_node_mass = 0.0;  // for the PCG error bound (linalg/pcg.h)
