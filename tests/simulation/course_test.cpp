@@ -2,8 +2,10 @@
 // public solid-sim-tutorial's Python demos they come from. tests/data/course/<scene>.txt holds the
 // demo's node positions every 10 steps over 200 steps, run converged (tol 1e-6) with its own
 // settings (scripts/course_reference.py made them from the tutorial; tests/data/course/README.md
-// says how). Each scene, also converged (tol 1e-6), must follow its demo to 1e-4 m at
-// every sample, and also lets the picture move (a reference that stays still would match
+// says how). Each scene, also converged (tol 1e-6), must follow its demo at every sample, to
+// 1e-4 m for chapters 1-8, 1e-6 m for chapter 9's polynomial bases and 1e-5 m for its modal
+// basis (issue 29; why the modal one is looser: docs/scenes.md, "Reduced bases"), and also
+// lets the picture move (a reference that stays still would match
 // anything that does nothing). Samples stop where the ceiling does (stack, stack-friction:
 // after 194 of the 200 steps): the demo decides by the ceiling's actual height, invfree by
 // its nominal one, so the demo moves it once more (docs/method.md, "Where the ceiling
@@ -44,10 +46,16 @@ std::vector<Sample> read_reference(const std::string& scene) {
   return samples;
 }
 
-class CourseScene : public ::testing::TestWithParam<const char*> {};
+struct CourseCase {
+  const char* scene;
+  double tolerance;  // m
+};
 
-TEST_P(CourseScene, FollowsThePythonDemoToATenthOfAMillimetre) {
-  const std::string name = GetParam();
+class CourseScene : public ::testing::TestWithParam<CourseCase> {};
+
+TEST_P(CourseScene, FollowsThePythonDemo) {
+  const std::string name = GetParam().scene;
+  const double tolerance = GetParam().tolerance;
   const auto reference = read_reference(name);
   ASSERT_EQ(reference.size(), 21u) << "tests/data/course/" << name << ".txt";
   SceneLoad load = load_builtin_scene(name);
@@ -75,8 +83,8 @@ TEST_P(CourseScene, FollowsThePythonDemoToATenthOfAMillimetre) {
       worst = std::max(worst, std::abs(sim.x[k] - sample.x[k]));
       moved = std::max(moved, std::abs(sample.x[k] - reference[0].x[k]));
     }
-    EXPECT_LT(worst, 1e-4) << name << " at step " << sample.step;
-    if (worst >= 1e-4) break;
+    EXPECT_LT(worst, tolerance) << name << " at step " << sample.step;
+    if (worst >= tolerance) break;
   }
   EXPECT_GT(moved, 0.05) << name << ": the reference hardly moves";
   std::ostringstream text;
@@ -85,11 +93,19 @@ TEST_P(CourseScene, FollowsThePythonDemoToATenthOfAMillimetre) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Course, CourseScene,
-                         ::testing::Values("course-1-mass-spring", "course-2-dirichlet",
-                                           "course-3-contact", "course-4-friction",
-                                           "course-5-moving-dirichlet", "stack", "stack-friction"),
+                         ::testing::Values(CourseCase{"course-1-mass-spring", 1e-4},
+                                           CourseCase{"course-2-dirichlet", 1e-4},
+                                           CourseCase{"course-3-contact", 1e-4},
+                                           CourseCase{"course-4-friction", 1e-4},
+                                           CourseCase{"course-5-moving-dirichlet", 1e-4},
+                                           CourseCase{"stack", 1e-4},
+                                           CourseCase{"stack-friction", 1e-4},
+                                           CourseCase{"course-9-affine", 1e-6},
+                                           CourseCase{"course-9-quadratic", 1e-6},
+                                           CourseCase{"course-9-cubic", 1e-6},
+                                           CourseCase{"course-9-modal", 1e-5}),
                          [](const auto& info) {
-                           std::string n = info.param;
+                           std::string n = info.param.scene;
                            for (char& c : n)
                              if (c == '-') c = '_';
                            return n;
