@@ -20,13 +20,16 @@ constexpr ValueBounds kSegments{1.0, double(kMaxSegments), false, false, true};
 constexpr ValueBounds kCount{0.0, kInf, false, false, true};
 constexpr ValueBounds kNewtonIterations{1.0, 100000.0, false, false, true};
 constexpr ValueBounds kRampSteps{1.0, 1e9, false, false, true};
+constexpr ValueBounds kPolynomialOrder{1.0, 3.0, false, false, true};
+constexpr ValueBounds kModes{1.0, 1e6, false, false, true};
 
 // As docs/scene-keys.md writes each type.
 constexpr EnumName<FieldType> kFieldTypeNames[] = {
     {FieldType::Number, "number"},        {FieldType::Integer, "integer"},
     {FieldType::Boolean, "boolean"},      {FieldType::Choice, "string"},
     {FieldType::Vector, "[x, y]"},        {FieldType::Text, "path"},
-    {FieldType::Points, "[[x, y], ...]"}, {FieldType::Loops, "[[[x, y], ...], ...]"}};
+    {FieldType::Points, "[[x, y], ...]"}, {FieldType::Loops, "[[[x, y], ...], ...]"},
+    {FieldType::Pairs, "[[i, j], ...]"}};
 
 // core/linalg/linear_solver_kind.h spells its kinds itself (linalg/ is below scene/); the
 // pairs are built from that spelling.
@@ -46,7 +49,7 @@ template <auto F>
 FieldValue get_member(const SceneDef& s) {
   using T = MemberType<F>;
   if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, double> || std::is_same_v<T, Vec2> ||
-                std::is_same_v<T, std::vector<Loop>>)
+                std::is_same_v<T, std::vector<Loop>> || std::is_same_v<T, IndexPairs>)
     return s.*F;
   else if constexpr (std::is_unsigned_v<T>)
     return static_cast<unsigned long long>(s.*F);
@@ -208,12 +211,16 @@ constexpr SceneSection kSections[] = {
      "a plane moving down until it stops, squashing the square; no section, no ceiling"},
     {"barrier", nullptr, "the IPC log barrier of both planes"},
     {"mass_spring", &SceneDef::has_mass_spring,
-     "springs on the mesh's edges and both diagonals of every cell instead of the "
-     "material's triangles (the course's chapters 1-5); no section, no springs"},
+     "springs on the mesh's edges and both diagonals of every cell, or on the node pairs "
+     "listed, instead of the material's triangles (the course's chapters 0-5); no section, "
+     "no springs"},
     {"fixed", &SceneDef::has_fixed,
      "nodes held at their initial positions, chosen in rest space; no section, none"},
     {"self_contact", &SceneDef::has_self_contact,
      "IPC contact of the boundary with itself (docs/method.md); no section, none"},
+    {"reduced", nullptr,
+     "Newton's steps in a subspace x = x0 + B q (the course's chapter 9, "
+     "core/scene/reduced_basis.h)"},
 };
 
 // Slider ranges (app/live/param_limits.h), each narrower than the valid range on purpose:
@@ -236,6 +243,9 @@ constexpr SceneField kFields[] = {
         "mesh", "mass",
         "node masses: total / node count (the demo's), or a third of each triangle's to its "
         "nodes")),
+    rebuilds(number<&SceneDef::node_mass>(
+        "mesh", "node_mass", "kg", kNonNegative,
+        "every node's mass when > 0 (the course's chapter 0 particles), instead of density")),
     rebuilds(
         number<&SceneDef::jitter>("mesh", "jitter", "", kBelowHalf,
                                   "random initial node offset, as a fraction of the edge length")),
@@ -265,6 +275,8 @@ constexpr SceneField kFields[] = {
                                     "polygon: its corners, either orientation"),
     shape_field<&ShapeDef::holes>("holes", FieldType::Loops, "m", kFinite,
                                   "polygon: holes, each a list of corners inside the outline"),
+    shape_field<&ShapeDef::points>("points", FieldType::Points, "m", kFinite,
+                                   "points: the particles' rest positions (nodes, no triangles)"),
     shape_field<&ShapeDef::file>("file", FieldType::Text, "", kFinite,
                                  "svg, mesh: the file, relative to the scene file"),
     shape_field<&ShapeDef::path_id>("path_id", FieldType::Text, "", kFinite,
@@ -321,6 +333,9 @@ constexpr SceneField kFields[] = {
                                         "velocity of every node at t = 0"),
     boolean<&SceneDef::has_gravity>("gravity", "enabled", "false switches gravity off"),
     vector<&SceneDef::gravity>("gravity", "g", "m/s^2", "gravitational acceleration"),
+    boolean<&SceneDef::gravity_per_spring>(
+        "gravity", "per_spring",
+        "the course's chapter 0 quirk: a node's gravity counted once per spring it ends"),
     boolean<&SceneDef::has_ground>("ground", "enabled", "false switches the ground off"),
     number<&SceneDef::ground_y>("ground", "y", "m", kFinite, "height of the ground"),
     with_slider(
@@ -349,6 +364,20 @@ constexpr SceneField kFields[] = {
         number<&SceneDef::spring_stiffness>("mass_spring", "stiffness", "N/m", kPositive,
                                             "k of every spring: 1/2 k l^2 (|d|^2 / l^2 - 1)^2"),
         {1e1, 1e8}),
+    choice<&SceneDef::spring_law, kSpringLawNames>(
+        "mass_spring", "law",
+        "the spring's energy: green 1/2 k l^2 (|d|^2 / l^2 - 1)^2, hooke 1/2 k (|d| - l)^2"),
+    {"mass_spring",
+     "springs",
+     FieldType::Pairs,
+     "",
+     "node index pairs, rest lengths from the rest positions ([]: the mesh's edges and both "
+     "diagonals)",
+     kFinite,
+     true,
+     {},
+     get_member<&SceneDef::springs>,
+     set_member<&SceneDef::springs>},
     rebuilds(boolean<&SceneDef::has_fixed>("fixed", "enabled", "false frees every node")),
     rebuilds(choice<&SceneDef::fixed_corners, kFixedCornersNames>(
         "fixed", "corners",
@@ -397,6 +426,17 @@ constexpr SceneField kFields[] = {
     boolean<&SceneDef::self_contact_ccd>(
         "self_contact", "ccd",
         "the line search's CCD filter (false only to show what goes wrong without it)"),
+    rebuilds(choice<&SceneDef::reduced_basis, kReducedBasisNames>(
+        "reduced", "basis",
+        "the subspace: every unknown, polynomials of the rest position, or the rest "
+        "Hessian's lowest eigenvectors")),
+    rebuilds(integer<&SceneDef::reduced_order>(
+        "reduced", "order", kPolynomialOrder,
+        "the polynomial basis's degree: 1 affine, 2 quadratic, 3 cubic")),
+    rebuilds(integer<&SceneDef::reduced_modes>(
+        "reduced", "modes", kModes,
+        "the modal basis's eigenvectors, rigid modes included (a cut inside a degenerate "
+        "group is refused)")),
 };
 
 // ---- [[body]] -------------------------------------------------------------------------

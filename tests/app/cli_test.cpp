@@ -218,9 +218,11 @@ TEST(Cli, EveryBadCommandLineValueExitsTwo) {
       {"simulate --steps", "--steps"},
       {"simulate --scene", "--scene"},
       {"simulate --scene ''",
-       ": no such file, and not a built-in scene (bunny, c-shape, compress, course-1-mass-spring, "
-       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, "
-       "plate-hole, ring, "
+       ": no such file, and not a built-in scene (bunny, c-shape, compress, course-0-free-fall, "
+       "course-0-mass-spring, course-0-spring, course-1-mass-spring, "
+       "course-2-dirichlet, course-3-contact, course-4-friction, course-5-moving-dirichlet, "
+      "course-9-affine, course-9-cubic, course-9-modal, course-9-quadratic, drop, "
+       "modes-cantilever, plate-hole, ring, "
        "stack, stack-friction)"},
       {"simulate --scene comprss", "comprss: no such file, and not a built-in scene"},
       {"simulate --scene " + dir + "/subdir", dir + "/subdir: is a directory, not a scene file"},

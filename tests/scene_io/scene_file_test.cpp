@@ -48,8 +48,10 @@ TEST(BuiltinScenes, EveryAssetFileIsEmbeddedAndLoads) {
   }
   EXPECT_EQ(files, embedded.size());
   EXPECT_EQ(builtin_scene_names(),
-            "bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-            "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, "
+            "bunny, c-shape, compress, course-0-free-fall, course-0-mass-spring, course-0-spring, "
+            "course-1-mass-spring, course-2-dirichlet, course-3-contact, "
+            "course-4-friction, course-5-moving-dirichlet, "
+      "course-9-affine, course-9-cubic, course-9-modal, course-9-quadratic, drop, modes-cantilever, plate-hole, ring, stack, "
             "stack-friction");
 }
 
@@ -68,9 +70,11 @@ TEST(BuiltinScenes, CompressIsTheDefaultSceneAndDropItsVariant) {
   expected.friction = 0.0;
   EXPECT_TRUE(*drop.scene == expected);
   EXPECT_EQ(load_builtin_scene("stress-h0.1").error,
-            "stress-h0.1: not a built-in scene (bunny, c-shape, compress, course-1-mass-spring, "
+            "stress-h0.1: not a built-in scene (bunny, c-shape, compress, course-0-free-fall, "
+            "course-0-mass-spring, course-0-spring, course-1-mass-spring, "
             "course-2-dirichlet, "
-            "course-3-contact, course-4-friction, course-5-moving-dirichlet, drop, plate-hole, "
+            "course-3-contact, course-4-friction, course-5-moving-dirichlet, "
+      "course-9-affine, course-9-cubic, course-9-modal, course-9-quadratic, drop, modes-cantilever, plate-hole, "
             "ring, stack, "
             "stack-friction)");
 }
@@ -181,8 +185,10 @@ TEST(SceneFiles, MissingFileAndUnknownName) {
   EXPECT_EQ(
       load.error,
       "/nonexistent/scene.toml: no such file, and not a built-in scene (bunny, c-shape, compress, "
+      "course-0-free-fall, course-0-mass-spring, course-0-spring, "
       "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
-      "course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
+      "course-5-moving-dirichlet, "
+      "course-9-affine, course-9-cubic, course-9-modal, course-9-quadratic, drop, modes-cantilever, plate-hole, ring, stack, stack-friction)");
 }
 
 TEST(Overrides, ApplyAndValidate) {
@@ -226,13 +232,15 @@ TEST(Overrides, ApplyAndValidate) {
 
 // The kind of value each key takes. The test fails when a key is added to the parser
 // without being listed here, so every key's wrong types stay covered.
-enum class Kind { Number, Integer, Enum, Bool, Vec2, Text, Points, Loops };
+enum class Kind { Number, Integer, Enum, Bool, Vec2, Text, Points, Loops, Pairs };
 const std::map<std::string, Kind>& key_kinds() {
   static const std::map<std::string, Kind> kinds = {
       {"mesh.side", Kind::Number},
       {"mesh.n_seg", Kind::Integer},
       {"mesh.density", Kind::Number},
       {"mesh.mass", Kind::Enum},
+      {"mesh.node_mass", Kind::Number},
+      {"mesh.points", Kind::Points},
       {"mesh.jitter", Kind::Number},
       {"mesh.seed", Kind::Integer},
       {"mesh.shape", Kind::Enum},
@@ -264,6 +272,7 @@ const std::map<std::string, Kind>& key_kinds() {
       {"solver.linear_solver", Kind::Enum},
       {"gravity.enabled", Kind::Bool},
       {"gravity.g", Kind::Vec2},
+      {"gravity.per_spring", Kind::Bool},
       {"ground.enabled", Kind::Bool},
       {"ground.y", Kind::Number},
       {"ground.friction", Kind::Number},
@@ -277,6 +286,8 @@ const std::map<std::string, Kind>& key_kinds() {
       {"ground.normal", Kind::Vec2},
       {"mass_spring.enabled", Kind::Bool},
       {"mass_spring.stiffness", Kind::Number},
+      {"mass_spring.law", Kind::Enum},
+      {"mass_spring.springs", Kind::Pairs},
       {"fixed.enabled", Kind::Bool},
       {"fixed.corners", Kind::Enum},
       {"fixed.box_min", Kind::Vec2},
@@ -288,6 +299,9 @@ const std::map<std::string, Kind>& key_kinds() {
       {"self_contact.enabled", Kind::Bool},
       {"self_contact.friction", Kind::Number},
       {"self_contact.ccd", Kind::Bool},
+      {"reduced.basis", Kind::Enum},
+      {"reduced.order", Kind::Integer},
+      {"reduced.modes", Kind::Integer},
   };
   return kinds;
 }
@@ -355,6 +369,15 @@ std::vector<WrongValue> wrong_values(Kind kind) {
               {"[[1.0, 2.0]]", "polygon 0: point 0: expected [x, y]"},
               {"[[[0.0, 0.0]], [[1.0, inf]]]",
                "polygon 1: point 0: element 1: must be a finite number"}};
+    case Kind::Pairs:
+      return {{"1", "expected an array of node pairs"},
+              {"\"x\"", "expected an array of node pairs"},
+              {"[0, 1]", "pair 0: expected [i, j]"},
+              {"[[0, 1], [2]]", "pair 1: expected [i, j]"},
+              {"[[0, 1.5]]", "pair 0: element 1: expected an integer, got a number"},
+              {"[[\"a\", 1]]", "pair 0: element 0: expected an integer, got a string"},
+              {"[[-1, 0]]", "pair 0: element 0: must be a node index >= 0"},
+              {"[[0, 4294967296]]", "pair 0: element 1: must be a node index >= 0"}};
   }
   return {};
 }
@@ -710,8 +733,10 @@ TEST(BadInput, FilesThatAreNotScenes) {
   expect_bad(dir + "/missing.toml",
              dir +
                  "/missing.toml: no such file, and not a built-in scene (bunny, c-shape, compress, "
+                 "course-0-free-fall, course-0-mass-spring, course-0-spring, "
                  "course-1-mass-spring, course-2-dirichlet, course-3-contact, course-4-friction, "
-                 "course-5-moving-dirichlet, drop, plate-hole, ring, stack, stack-friction)");
+                 "course-5-moving-dirichlet, "
+      "course-9-affine, course-9-cubic, course-9-modal, course-9-quadratic, drop, modes-cantilever, plate-hole, ring, stack, stack-friction)");
   expect_bad(dir + "/missing/deeper.toml", "no such file");
   expect_bad(dir, dir + ": is a directory, not a scene file");
   expect_bad(dir + "/binary.toml", dir + "/binary.toml: not a text file");
@@ -723,8 +748,10 @@ TEST(BadInput, FilesThatAreNotScenes) {
   expect_bad(
       "comprss",
       "comprss: no such file, and not a built-in scene (did you mean \"compress\"?) "
-      "(bunny, c-shape, compress, course-1-mass-spring, course-2-dirichlet, course-3-contact, "
-      "course-4-friction, course-5-moving-dirichlet, drop, plate-hole, ring, stack, "
+      "(bunny, c-shape, compress, course-0-free-fall, course-0-mass-spring, course-0-spring, "
+      "course-1-mass-spring, course-2-dirichlet, course-3-contact, "
+      "course-4-friction, course-5-moving-dirichlet, "
+      "course-9-affine, course-9-cubic, course-9-modal, course-9-quadratic, drop, modes-cantilever, plate-hole, ring, stack, "
       "stack-friction)");
   expect_bad(dir + "/empty.toml/x", "no such file");  // a file used as a directory
   // Unreadable: /proc/self/mem is a regular file that fails every read at offset 0.

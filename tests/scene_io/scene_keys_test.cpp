@@ -137,9 +137,15 @@ TEST(SceneKeys, EveryChoiceReadsAndWritesBack) {
         s.fixed_corners = FixedCorners::Bottom;
         s.has_ground = s.has_ceiling = false;
       }
+      if (k.section == "reduced") s.has_ceiling = false;  // a basis has no ceiling unknown
       // A polygon needs its outline; svg and mesh a file (tests/simulation/shape_scene_test).
       if (k.key == "shape" && (c == "svg" || c == "mesh")) continue;
       if (k.key == "shape") s.shape.outline = {Vec2(-0.5, -0.5), Vec2(0.5, -0.5), Vec2(0.0, 0.5)};
+      if (k.key == "shape" && c == "points") {  // particles: their masses and springs
+        s.shape.points = {Vec2(0.0, 0.0), Vec2(0.1, 0.0)};
+        s.node_mass = 1.0;
+        s.has_mass_spring = true;
+      }
       EXPECT_EQ(apply_override(s, k.section + "." + k.key + "=" + c), "") << c;
       EXPECT_NE(scene_to_toml(s).find("\n" + k.key + " = \"" + c + "\"\n"), std::string::npos)
           << c << "\n"
@@ -167,6 +173,11 @@ FieldValue other_value(const SceneField& f, const FieldValue& v) {
   if (const auto* loops = std::get_if<std::vector<Loop>>(&v)) {
     std::vector<Loop> other = *loops;
     other.push_back(Loop{Vec2(1.0, 2.0)});
+    return other;
+  }
+  if (const auto* pairs = std::get_if<IndexPairs>(&v)) {
+    IndexPairs other = *pairs;
+    other.push_back({0, 1});
     return other;
   }
   return Vec2(std::get<Vec2>(v) + Vec2(1.0, 1.0));
@@ -197,7 +208,9 @@ TEST(SceneKeys, NeedsNewMeshIsTheTablesColumn) {
                 "mesh.holes",    "mesh.file",       "mesh.path_id",        "mesh.scale",
                 "mesh.max_edge", "ceiling.enabled", "mass_spring.enabled", "fixed.enabled",
                 "fixed.corners", "fixed.box_min",   "fixed.box_max",       "fixed.boxes",
-                "fixed.components", "fixed.x_boxes", "fixed.y_boxes"}));
+                "fixed.components", "fixed.x_boxes", "fixed.y_boxes",   "mesh.node_mass",
+                "mesh.points",   "mass_spring.springs", "reduced.basis",  "reduced.order",
+                "reduced.modes"}));
   // [[body]]: a body more or fewer, or its square, place or velocity; not its material.
   SceneDef two = base;
   two.bodies = {BodyDef{}, BodyDef{}};
