@@ -15,6 +15,7 @@ void register_live_command(CLI::App& app, int& exit_code);
 void register_inspect_command(CLI::App& app, int& exit_code);
 void register_landscape_command(CLI::App& app, int& exit_code);
 void register_verify_command(CLI::App& app, int& exit_code);
+void register_modes_command(CLI::App& app, int& exit_code);
 // Plain `invfree` (no command): the live window when a display is available.
 int run_default_command();
 

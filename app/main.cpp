@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   invfree::register_inspect_command(app, exit_code);
   invfree::register_landscape_command(app, exit_code);
   invfree::register_verify_command(app, exit_code);
+  invfree::register_modes_command(app, exit_code);
   try {
     app.parse(argc, argv);  // runs the command
     if (app.get_subcommands().empty()) exit_code = invfree::run_default_command();

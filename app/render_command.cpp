@@ -37,6 +37,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
+#include "app/movie.h"
 #include "app/output_files.h"
 #include "app/render/frame_writer.h"
 #include "app/render/offscreen_context.h"
@@ -94,136 +95,10 @@ bool parse_size(const std::string& text, int* width, int* height) {
   return *width >= 64 && *height >= 64 && *width <= 8192 && *height <= 8192;
 }
 
-// The full path of `program` on PATH, or "".
-std::string find_on_path(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  if (path == nullptr) return "";
-  std::string dirs = path;
-  size_t start = 0;
-  while (start <= dirs.size()) {
-    const size_t end = std::min(dirs.find(':', start), dirs.size());
-    const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
-    const std::string candidate = dir + "/" + program;
-    if (::access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate))
-      return candidate;
-    start = end + 1;
-  }
-  return "";
-}
-
 std::string frame_name(int i) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "frame_%06d.png", i);
   return buf;
-}
-
-// Runs ffmpeg over this run's frames DIR/frame_000000.png .. frame_<frames-1>.png into
-// DIR/movie.mp4 (H.264, yuv420p, dimensions padded to even numbers with white, as yuv420p
-// needs) or DIR/movie.gif (ffmpeg's palettegen / paletteuse: one palette made for the
-// whole clip); older frames after them (--force) are not part of it. Written under a
-// temporary name and renamed when ffmpeg succeeded. ffmpeg reports its progress on a pipe
-// (-progress): `on_frame(n)` is called with each frame count it reports. An interruption
-// reaches ffmpeg too; when it stopped ffmpeg there is no movie and no error. ffmpeg's own
-// messages are held in a memory file and shown only when it failed by itself. Returns ""
-// or a one-line error; *made tells whether the movie was written.
-std::string make_movie(const std::string& ffmpeg, const std::string& dir, int frames, double fps,
-                       bool gif, const std::function<void(int)>& on_frame, bool* made) {
-  *made = false;
-  const std::string ext = gif ? "gif" : "mp4";
-  const std::string tmp = dir + "/movie.tmp" + std::to_string(::getpid()) + "." + ext;
-  const std::string final_path = dir + "/movie." + ext;
-  char rate[32];
-  std::snprintf(rate, sizeof rate, "%.6g", fps);
-  std::vector<std::string> args = {ffmpeg,
-                                   "-nostdin",
-                                   "-y",
-                                   "-loglevel",
-                                   "error",
-                                   "-progress",
-                                   "pipe:1",
-                                   "-framerate",
-                                   rate,
-                                   "-i",
-                                   dir + "/frame_%06d.png",
-                                   "-frames:v",
-                                   std::to_string(frames)};
-  const std::vector<std::string> mp4_args = {
-      "-vf",       "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white",
-      "-c:v",      "libx264",
-      "-pix_fmt",  "yuv420p",
-      "-movflags", "+faststart",
-      "-f",        "mp4"};
-  const std::vector<std::string> gif_args = {
-      "-vf", "split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse=dither=sierra2_4a",
-      "-f", "gif"};
-  for (const std::string& a : gif ? gif_args : mp4_args) args.push_back(a);
-  args.push_back(tmp);
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::fflush(nullptr);
-  const int messages = ::memfd_create("ffmpeg-messages", MFD_CLOEXEC);  // -1: inherit stderr
-  int progress[2] = {-1, -1};
-  if (::pipe2(progress, O_CLOEXEC) != 0) progress[0] = progress[1] = -1;
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    if (messages >= 0) ::close(messages);
-    for (int fd : progress)
-      if (fd >= 0) ::close(fd);
-    return "cannot start ffmpeg: fork failed";
-  }
-  if (pid == 0) {
-    if (messages >= 0) ::dup2(messages, STDERR_FILENO);
-    ::dup2(progress[1] >= 0 ? progress[1] : ::open("/dev/null", O_WRONLY), STDOUT_FILENO);
-    ::execv(argv[0], argv.data());
-    std::_Exit(127);
-  }
-  forward_interrupts_to(pid);
-  if (progress[1] >= 0) ::close(progress[1]);
-  // "frame=N" lines until ffmpeg closes its end (it exits).
-  if (progress[0] >= 0) {
-    std::string pending;
-    char buf[512];
-    for (;;) {
-      const ssize_t n = ::read(progress[0], buf, sizeof buf);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      pending.append(buf, static_cast<size_t>(n));
-      for (size_t eol; (eol = pending.find('\n')) != std::string::npos; pending.erase(0, eol + 1))
-        if (pending.compare(0, 6, "frame=") == 0) on_frame(std::atoi(pending.c_str() + 6));
-    }
-    ::close(progress[0]);
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      forward_interrupts_to(0);
-      if (messages >= 0) ::close(messages);
-      return "ffmpeg: waitpid failed";
-    }
-  }
-  forward_interrupts_to(0);
-  const bool failed = !WIFEXITED(status) || WEXITSTATUS(status) != 0;
-  if (messages >= 0) {
-    if (failed && !interrupted()) {  // copy ffmpeg's messages to our stderr
-      char buf[4096];
-      off_t at = 0;
-      for (ssize_t n; (n = ::pread(messages, buf, sizeof buf, at)) > 0; at += n)
-        (void)!::write(STDERR_FILENO, buf, static_cast<size_t>(n));
-    }
-    ::close(messages);
-  }
-  std::error_code ec;
-  if (failed) {
-    std::filesystem::remove(tmp, ec);
-    if (interrupted()) return "";  // the caller reports the interruption
-    return "ffmpeg could not make " + final_path + " (exit status " +
-           std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "; its message is above)";
-  }
-  std::filesystem::rename(tmp, final_path, ec);
-  if (ec) return final_path + ": cannot rename into place: " + ec.message();
-  *made = true;
-  return "";
 }
 
 // Steps the simulation on its own thread and hands over a FrameState per frame (frame 0:

@@ -7,6 +7,10 @@ simulator.py, settings unchanged) with pygame replaced by a stub, Newton's toler
 1e-6 instead of the scripts' 1e-2 (the only change, made by wrapping
 time_integrator.step_forward), and writes the body's node positions every 10 steps over
 200 steps to tests/data/course/<scene>.txt: one line per sample, "step x0 y0 x1 y1 ...".
+With a tutorial that has chapter 9 (phys-sim-book/solid-sim-tutorial), also runs
+9_reduced_DOF/linear.py up to its eigsh call (run_modes) and writes its 8 eigenvalues to
+tests/data/course/modes-cantilever.txt; needs no matplotlib (it is stubbed: linear.py draws
+only after eigsh).
 
 Usage: scripts/course_reference.py TUTORIAL [OUT_DIR]
 TUTORIAL is a checkout of github.com/liminchen/solid-sim-tutorial, or a bare git
@@ -136,6 +140,127 @@ def run_chapter(tutorial, chapter, body_nodes_only=True):
     return samples
 
 
+# The course's chapter 9 linear modal analysis (9_reduced_DOF/linear.py, in
+# phys-sim-book/solid-sim-tutorial only): the scene `modes-cantilever`.
+MODES_SCRIPT = ("9_reduced_DOF", "linear.py")
+MODES_SCENE = "modes-cantilever"
+
+
+def _anything_module(name):
+    module = types.ModuleType(name)
+    module.__getattr__ = lambda attribute: _Anything()
+    return module
+
+
+def run_modes(tutorial):
+    """Runs linear.py as it is (its settings unchanged) up to its eigsh call and returns the
+    eigenvalues it computes, ascending. matplotlib is replaced by a stub (linear.py draws
+    only after eigsh) and eigsh by a wrapper that records the result and stops the script,
+    so that no GIF is made; both are restored afterwards."""
+    import scipy.sparse.linalg
+
+    chapter, script = MODES_SCRIPT
+    stubbed = ["matplotlib", "matplotlib.pyplot", "matplotlib.tri", "matplotlib.animation"]
+    saved = {name: sys.modules.get(name) for name in stubbed}
+    original = scipy.sparse.linalg.eigsh
+    result = {}
+
+    def eigsh(*args, **kwargs):
+        result["values"] = original(*args, **kwargs)[0]
+        raise _Done()
+
+    with tempfile.TemporaryDirectory() as work:
+        _chapter_files(tutorial, chapter, work)
+        old_cwd = os.getcwd()
+        os.chdir(work)
+        try:
+            for name in stubbed:
+                sys.modules[name] = _anything_module(name)
+            scipy.sparse.linalg.eigsh = eigsh
+            with contextlib.redirect_stdout(io.StringIO()):
+                try:
+                    exec(compile(open(script).read(), script, "exec"), {"__name__": "__main__"})
+                except _Done:
+                    pass
+        finally:
+            scipy.sparse.linalg.eigsh = original
+            for name, module in saved.items():
+                if module is None:
+                    sys.modules.pop(name, None)
+                else:
+                    sys.modules[name] = module
+            os.chdir(old_cwd)
+    if "values" not in result:
+        raise RuntimeError("%s/%s did not call eigsh" % MODES_SCRIPT)
+    return sorted(float(v) for v in result["values"])
+
+
+def _has_chapter(tutorial, chapter):
+    """Whether the tutorial has this chapter (the older liminchen/solid-sim-tutorial stops
+    at chapter 8)."""
+    if os.path.isdir(tutorial):
+        if os.path.isdir(os.path.join(tutorial, chapter)):
+            return True
+        if not os.path.exists(os.path.join(tutorial, "HEAD")):
+            return False
+    return subprocess.run(["git", "--git-dir", tutorial, "cat-file", "-e", "HEAD:" + chapter],
+                          stderr=subprocess.DEVNULL).returncode == 0
+
+
+def write_modes(tutorial, out_dir):
+    values = run_modes(tutorial)
+    path = os.path.join(out_dir, MODES_SCENE + ".txt")
+    with open(path, "w") as f:
+        f.write("# %s/%s of solid-sim-tutorial: eigsh(K, M, sigma=0), the %d smallest "
+                "eigenvalues (1/s^2), ascending; made by scripts/course_reference.py\n"
+                % (MODES_SCRIPT + (len(values),)))
+        for v in values:
+            f.write("%.17g\n" % v)
+    print("%s: %d eigenvalues -> %s" % (MODES_SCENE, len(values), path))
+
+
+def run_chapter0(tutorial, script, every, steps, fixed_nodes):
+    """Runs 0_getting_started/<script> and returns [(step, [x0, y0, ...])], recorded at the
+    top of every loop iteration (the stub's pygame.event.get) while time_step % every == 0,
+    up to `steps` steps or the script's own stop (simulator0.py's input() at the ground)."""
+    samples = []
+    with tempfile.TemporaryDirectory() as work:
+        _chapter_files(tutorial, "0_getting_started", work)
+        old_path, old_cwd = list(sys.path), os.getcwd()
+        sys.path.insert(0, work)
+        os.chdir(work)
+        sys.modules.pop("square_mesh", None)
+        scope = {"__name__": "__main__"}
+
+        def record():
+            step = scope["time_step"]
+            if step % every == 0:
+                x = scope["x"]
+                xs = [float(c) for c in (x.reshape(-1) if hasattr(x, "reshape") else x)]
+                samples.append((step, fixed_nodes + xs))
+            if step >= steps:
+                raise _Done()
+            return []
+
+        def stop(*args):  # simulator0.py waits for a key once the particle is down
+            raise _Done()
+
+        stub = _pygame_stub()
+        stub.event = types.SimpleNamespace(get=record)
+        sys.modules["pygame"] = stub
+        scope["input"] = stop
+        try:
+            with contextlib.redirect_stdout(io.StringIO()):
+                try:
+                    exec(compile(open(script).read(), script, "exec"), scope)
+                except _Done:
+                    pass
+        finally:
+            sys.path[:] = old_path
+            os.chdir(old_cwd)
+    return samples
+
+
 def main():
     if len(sys.argv) < 2:
         print(__doc__)
@@ -156,6 +281,8 @@ def main():
             for step, xs in samples:
                 f.write("%d %s\n" % (step, " ".join("%.12g" % v for v in xs)))
         print("%s: %d samples of %d nodes -> %s" % (scene, len(samples), len(samples[0][1]) // 2, path))
+    if (not only or MODES_SCENE in only) and _has_chapter(tutorial, MODES_SCRIPT[0]):
+        write_modes(tutorial, out_dir)
     return 0
 
 

@@ -83,7 +83,8 @@ TEST(CliRules, TyposGetTheNearestValidWord) {
       {"simulate --stpes 10", "did you mean \"--steps\" for \"--stpes\"?"},
       {"simulat", "did you mean \"simulate\" for \"simulat\"?"},
       {"frobnicate",
-       "(commands: simulate, bench, render, study, stability, live, inspect, landscape, verify)"},
+       "(commands: simulate, bench, render, study, stability, live, inspect, landscape, verify, "
+       "modes)"},
       {"simulate --scene compres", "did you mean \"compress\"?"},
       {"simulate --set material.youngs=1", "(keys of [material]: model, E, nu, mu, lambda)"},
       {"study --fromat svg", "did you mean \"--format\" for \"--fromat\"?"},
