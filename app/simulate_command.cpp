@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 #include "app/cli_checks.h"
 #include "app/command.h"
@@ -38,13 +39,20 @@ std::string obj_text(const Simulation& sim) {
   return o.str();
 }
 
+// The range of det F over the triangles; NaN for a mesh without triangles (particles).
+std::pair<double, double> det_f_range(const Simulation& sim) {
+  const auto det = triangle_det_f(sim);
+  if (det.empty()) return {std::nan(""), std::nan("")};
+  const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
+  return {*lo, *hi};
+}
+
 // The CSV row of the step just taken (the columns of --csv).
 void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r) {
-  const auto det = triangle_det_f(sim);
-  const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
+  const auto [lo, hi] = det_f_range(sim);
   const double gap = min_plane_gap(sim);
   csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual << ","
-      << r.energy << "," << *lo << "," << *hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
+      << r.energy << "," << lo << "," << hi << "," << (std::isfinite(gap) ? gap : -1.0) << ","
       << (sim.scene.has_ceiling ? sim.ceiling_y : 0.0) << ",";
   const EnergyReport e = energy_report(sim);
   csv << e.kinetic << "," << e.elastic << "," << e.gravitational << "," << e.contact << ",";
@@ -56,13 +64,13 @@ void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r
 // the final det F range.
 void print_summary(const Simulation& sim, long total_iterations, double total_ms) {
   const long done = sim.step_count;
-  const auto det = triangle_det_f(sim);
-  const auto [lo, hi] = std::minmax_element(det.begin(), det.end());
-  std::printf(
-      "%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, det F in [%.4f, "
-      "%.4f]\n",
-      sim.scene.name.c_str(), done, sim.time, done ? double(total_iterations) / done : 0.0,
-      done ? total_ms / done : 0.0, *lo, *hi);
+  const auto [lo, hi] = det_f_range(sim);
+  char det[64] = "no triangles";
+  if (sim.mesh.triangle_count() > 0)
+    std::snprintf(det, sizeof det, "det F in [%.4f, %.4f]", lo, hi);
+  std::printf("%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, %s\n",
+              sim.scene.name.c_str(), done, sim.time,
+              done ? double(total_iterations) / done : 0.0, done ? total_ms / done : 0.0, det);
   flush_standard_output();
 }
 

@@ -90,11 +90,15 @@ void make_terms(const Simulation& sim, const Boundary* boundary, StepProblem& p,
   p.springs.on = s.has_mass_spring && sim.workspace;
   p.springs.stiffness = s.spring_stiffness;
   p.springs.project = s.projection != HessianProjection::None;
+  p.springs.hooke = s.spring_law == SpringLaw::Hooke;
   if (sim.workspace) {
     p.springs.springs = &sim.workspace->springs;
     p.springs.slots = &sim.workspace->spring_slots;
   }
   p.gravity = {s.has_gravity, factor * s.gravity};
+  if (s.gravity_per_spring && sim.workspace &&
+      sim.workspace->spring_count.size() == static_cast<size_t>(n))
+    p.gravity.weight = sim.workspace->spring_count.data();
   p.dead_load.on = sim.node_load.size() == 2 * n;
   p.dead_load.force = sim.node_load.data();
   p.dead_load.origin = sim.mesh.rest.data();

@@ -204,7 +204,11 @@ Simulation make_simulation(const SceneDef& scene) {
   sim.workspace = std::make_unique<StepWorkspace>();
   NewtonWorkspace& ws = sim.workspace->newton;
   StepWorkspace& step_ws = *sim.workspace;
-  if (scene.has_mass_spring) step_ws.springs = mesh_springs(sim.mesh);
+  if (scene.has_mass_spring) {
+    step_ws.springs = scene.springs.empty() ? mesh_springs(sim.mesh)
+                                            : listed_springs(sim.mesh, scene.springs);
+    step_ws.spring_count = spring_counts(step_ws.springs, sim.mesh.node_count());
+  }
   ws.hessian =
       build_sparse_hessian(sim.mesh, scene.has_ceiling, spring_node_pairs(step_ws.springs));
   if (scene.has_mass_spring) {

@@ -12,7 +12,12 @@ With a tutorial that has chapter 9 (phys-sim-book/solid-sim-tutorial), also runs
 tests/data/course/modes-cantilever.txt; needs no matplotlib (it is stubbed: linear.py draws
 only after eigsh).
 
-Usage: scripts/course_reference.py TUTORIAL [OUT_DIR]
+Chapter 0 (0_getting_started: course-0-free-fall, course-0-spring, course-0-mass-spring)
+has no step_forward: run_chapter0 execs each simulatorN.py with a globals dict and records
+the state from the pygame stub's event.get, which runs at the top of every loop
+iteration (CHAPTER0 gives each one's steps and sampling).
+
+Usage: scripts/course_reference.py TUTORIAL [OUT_DIR] [SCENE ...]
 TUTORIAL is a checkout of github.com/liminchen/solid-sim-tutorial, or a bare git
 directory of it (the files are then read with `git show HEAD:...`). Needs numpy and scipy.
 Nothing of the tutorial is stored in this repository: only the numbers this script writes.
@@ -37,6 +42,16 @@ CHAPTERS = [
 STEPS = 200
 EVERY = 10
 TOL = 1e-6
+
+# Chapter 0: (script, scene, samples every, steps at most, the nodes invfree has before the
+# demo's). simulator0.py stops by itself where its particle reaches y = -1 (after 45 steps):
+# every step is recorded until then. simulator1.py's spring hangs from the origin, invfree's
+# node 0 (held by [fixed]).
+CHAPTER0 = [
+    ("simulator0.py", "course-0-free-fall", 1, STEPS, []),
+    ("simulator1.py", "course-0-spring", EVERY, STEPS, [0.0, 0.0]),
+    ("simulator2.py", "course-0-mass-spring", EVERY, STEPS, []),
+]
 
 
 class _Anything:
@@ -261,6 +276,48 @@ def run_chapter0(tutorial, script, every, steps, fixed_nodes):
     return samples
 
 
+def run_chapter0(tutorial, script, every, steps, fixed_nodes):
+    """Runs 0_getting_started/<script> and returns [(step, [x0, y0, ...])], recorded at the
+    top of every loop iteration (the stub's pygame.event.get) while time_step % every == 0,
+    up to `steps` steps or the script's own stop (simulator0.py's input() at the ground)."""
+    samples = []
+    with tempfile.TemporaryDirectory() as work:
+        _chapter_files(tutorial, "0_getting_started", work)
+        old_path, old_cwd = list(sys.path), os.getcwd()
+        sys.path.insert(0, work)
+        os.chdir(work)
+        sys.modules.pop("square_mesh", None)
+        scope = {"__name__": "__main__"}
+
+        def record():
+            step = scope["time_step"]
+            if step % every == 0:
+                x = scope["x"]
+                xs = [float(c) for c in (x.reshape(-1) if hasattr(x, "reshape") else x)]
+                samples.append((step, fixed_nodes + xs))
+            if step >= steps:
+                raise _Done()
+            return []
+
+        def stop(*args):  # simulator0.py waits for a key once the particle is down
+            raise _Done()
+
+        stub = _pygame_stub()
+        stub.event = types.SimpleNamespace(get=record)
+        sys.modules["pygame"] = stub
+        scope["input"] = stop
+        try:
+            with contextlib.redirect_stdout(io.StringIO()):
+                try:
+                    exec(compile(open(script).read(), script, "exec"), scope)
+                except _Done:
+                    pass
+        finally:
+            sys.path[:] = old_path
+            os.chdir(old_cwd)
+    return samples
+
+
 def main():
     if len(sys.argv) < 2:
         print(__doc__)
@@ -270,6 +327,18 @@ def main():
         os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data", "course")
     os.makedirs(out_dir, exist_ok=True)
     only = sys.argv[3:] if len(sys.argv) > 3 else None
+    for script, scene, every, steps, fixed_nodes in CHAPTER0:
+        if only and scene not in only:
+            continue
+        samples = run_chapter0(tutorial, script, every, steps, fixed_nodes)
+        path = os.path.join(out_dir, scene + ".txt")
+        with open(path, "w") as f:
+            f.write("# 0_getting_started/%s of solid-sim-tutorial (explicit), node positions (m) "
+                    "every %d step(s) to step %d; made by scripts/course_reference.py\n"
+                    % (script, every, samples[-1][0]))
+            for step, xs in samples:
+                f.write("%d %s\n" % (step, " ".join("%.17g" % v for v in xs)))
+        print("%s: %d samples of %d nodes -> %s" % (scene, len(samples), len(samples[0][1]) // 2, path))
     for chapter, scene in CHAPTERS:
         if only and scene not in only:
             continue

@@ -6,6 +6,7 @@
 #include "app/format_number.h"
 #include "app/study/methods.h"
 #include "app/study/stress_scenes.h"
+#include "scene_io/builtin_scenes.h"
 
 namespace invfree {
 
@@ -13,6 +14,50 @@ std::string failure_time(const StabilityCell& c) {
   return "t = " + format_number(c.fail_step * c.h, "%.3g") + " s, " +
          (c.substeps > 1 ? "substep " : "step ") + format_for_people(c.fail_step) +
          (c.substeps > 1 ? " of h/" + std::to_string(c.substeps) : "");
+}
+
+namespace {
+
+constexpr ExplicitRow kExplicitRows[] = {
+    {"course-0-mass-spring", 0.01, 0.83},
+    {"course-0-mass-spring", 0.03, 2.50},
+};
+
+}  // namespace
+
+// One explicit row: the built-in scene at the row's h, run and classified as every cell.
+StabilityCell run_explicit_row(const ExplicitRow& row, bool quick) {
+  StabilityCell cell;
+  cell.method = explicit_row_method(row);
+  cell.scene = row.scene;
+  cell.h = row.h;
+  const SceneLoad load = load_builtin_scene(row.scene);
+  if (!load.scene) {
+    cell.verdict = Verdict::NotApplicable;
+    cell.fail_step = 0;
+    cell.message = load.error;
+    return cell;
+  }
+  SceneDef scene = *load.scene;
+  scene.h = row.h;
+  RunOptions run;
+  run.duration = quick ? quick_stability_duration(scene) : stability_duration(scene);
+  const RunResult r = run_scene(scene, run);
+  cell.verdict = r.verdict;
+  cell.fail_step = r.fail_step;
+  cell.wall_s = r.wall_s;
+  cell.steps = r.steps;
+  cell.duration = run.duration;
+  cell.message = r.message;
+  return cell;
+}
+
+std::span<const ExplicitRow> explicit_rows() {
+  return kExplicitRows;
+}
+
+std::string explicit_row_method(const ExplicitRow& row) {
+  return "chapter-0-explicit-h" + format_number(row.h);
 }
 
 StabilityResult run_stability(const SweepOptions& options) {
@@ -75,16 +120,29 @@ StabilityResult run_stability(const SweepOptions& options) {
       result.cells.push_back(std::move(cell));
     }
   }
+  for (const ExplicitRow& row : explicit_rows()) {
+    if (options.stop_requested()) {
+      result.stopped = true;
+      return result;
+    }
+    StabilityCell cell = run_explicit_row(row, options.quick);
+    result.total_wall_s += cell.wall_s;
+    options.report(cell.method + " on " + cell.scene + ": " + verdict_name(cell.verdict) +
+                   (cell.verdict == Verdict::Ok ? "" : " (" + failure_time(cell) + ")") +
+                   (cell.message.empty() ? "" : ": " + cell.message));
+    result.explicit_cells.push_back(std::move(cell));
+  }
   return result;
 }
 
 std::string stability_csv(const StabilityResult& r) {
   std::ostringstream o;
   o << "method,scene,verdict,fail_step,wall_s\n";
-  for (const StabilityCell& c : r.cells)
-    o << c.method << "," << c.scene << "," << verdict_name(c.verdict) << ","
-      << (c.verdict == Verdict::Ok ? std::string() : std::to_string(c.fail_step)) << ","
-      << format_number(c.wall_s, "%.6g") << "\n";
+  for (const auto* cells : {&r.cells, &r.explicit_cells})
+    for (const StabilityCell& c : *cells)
+      o << c.method << "," << c.scene << "," << verdict_name(c.verdict) << ","
+        << (c.verdict == Verdict::Ok ? std::string() : std::to_string(c.fail_step)) << ","
+        << format_number(c.wall_s, "%.6g") << "\n";
   return o.str();
 }
 
@@ -117,6 +175,22 @@ std::string stability_markdown(const StabilityResult& r) {
     }
     o << "\n";
   }
+  if (!r.explicit_cells.empty()) {
+    o << "\nThe course's chapter 0, explicit symplectic Euler (the scene's own integrator) on "
+         "the hanging mass-spring square at the demo's h and at a larger one: stable only "
+         "while omega_max h <= 2 (omega_max = 83.3 rad/s at rest, so h <= 0.024 s):\n\n"
+      << "| row | scene | h | omega_max h | verdict |\n|---|---|---:|---:|---|\n";
+    for (size_t k = 0; k < r.explicit_cells.size(); ++k) {
+      const StabilityCell& c = r.explicit_cells[k];
+      const double omega_h = k < explicit_rows().size() ? explicit_rows()[k].omega_h : 0.0;
+      o << "| " << c.method << " | `" << c.scene << "` | " << format_number(c.h) << " s | "
+        << format_number(omega_h, "%.2f") << " | "
+        << (c.verdict == Verdict::Ok ? std::string("ok")
+                                     : "**" + std::string(verdict_name(c.verdict)) + "** (" +
+                                           failure_time(c) + ")")
+        << " |\n";
+    }
+  }
   o << "\nScenes:\n\n";
   for (size_t k = 0; k < r.scenes.size(); ++k)
     o << "- `" << r.scenes[k] << "`: " << r.scene_labels[k] << "\n";
@@ -141,11 +215,12 @@ std::string stability_markdown(const StabilityResult& r) {
     o << "\n";
   }
   o << "\nWhy each failing run stopped:\n\n";
-  for (const StabilityCell& c : r.cells)
-    if (c.verdict != Verdict::Ok)
-      o << "- " << c.method << " on `" << c.scene << "`: " << verdict_name(c.verdict)
-        << (c.verdict == Verdict::NotApplicable ? "" : " (" + failure_time(c) + ")") << ": "
-        << c.message << "\n";
+  for (const auto* cells : {&r.cells, &r.explicit_cells})
+    for (const StabilityCell& c : *cells)
+      if (c.verdict != Verdict::Ok)
+        o << "- " << c.method << " on `" << c.scene << "`: " << verdict_name(c.verdict)
+          << (c.verdict == Verdict::NotApplicable ? "" : " (" + failure_time(c) + ")") << ": "
+          << c.message << "\n";
   for (const std::string& e : r.scene_errors) o << "- scene file error: " << e << "\n";
   return o.str();
 }

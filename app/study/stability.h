@@ -5,6 +5,7 @@
 // other method runs at the scene's own h.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,28 @@ struct StabilityCell {
   Frame frame;
 };
 
+// The course's chapter 0 (issue 29): its explicit integrator (symplectic Euler, the scene's
+// own) on the hanging mass-spring square, at the demo's h and at a larger one. An explicit
+// step is stable only while omega_max h <= 2; the square's highest rest frequency is
+// omega_max = 83.3 rad/s (h <= 0.024 s), so h = 0.01 s is ok (omega_max h = 0.83) and
+// h = 0.03 s (2.5) blows up. Rows of their own after the table (not a method on the
+// stress scenes: the row is about h, not about a scene).
+struct ExplicitRow {
+  const char* scene;
+  double h;
+  double omega_h;  // omega_max h at rest, for the table
+};
+std::span<const ExplicitRow> explicit_rows();
+// The CSV's method name of an explicit row: "chapter-0-explicit-h0.03".
+std::string explicit_row_method(const ExplicitRow& row);
+// Runs one explicit row as run_stability does (quick: quick_stability_duration).
+StabilityCell run_explicit_row(const ExplicitRow& row, bool quick);
+
 struct StabilityResult {
   std::vector<std::string> methods, method_labels;  // rows
   std::vector<std::string> scenes, scene_labels;    // columns
   std::vector<StabilityCell> cells;                 // row-major
+  std::vector<StabilityCell> explicit_cells;        // explicit_rows(), in order
   std::vector<std::string> scene_errors;            // a stress file that failed to load
   double total_wall_s = 0.0;
   bool quick = false;    // each scene only until its defining event (--quick)

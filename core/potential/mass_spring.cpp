@@ -1,6 +1,7 @@
 #include "potential/mass_spring.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 
@@ -55,6 +56,22 @@ std::vector<Spring> mesh_springs(const Mesh& mesh) {
   return springs;
 }
 
+std::vector<Spring> listed_springs(const Mesh& mesh, const std::vector<std::array<int, 2>>& pairs) {
+  std::vector<Spring> springs;
+  springs.reserve(pairs.size());
+  for (const auto& [a, b] : pairs) springs.push_back({a, b, length2(mesh, a, b)});
+  return springs;
+}
+
+std::vector<double> spring_counts(const std::vector<Spring>& springs, int node_count) {
+  std::vector<double> count(node_count, 0.0);
+  for (const Spring& s : springs) {
+    count[s.i] += 1.0;
+    count[s.j] += 1.0;
+  }
+  return count;
+}
+
 std::vector<std::array<int, 2>> spring_node_pairs(const std::vector<Spring>& springs) {
   std::vector<std::array<int, 2>> out;
   out.reserve(springs.size());
@@ -94,15 +111,46 @@ Mat2 spring_hessian_block(const Spring& s, double k, const Vec2& xi, const Vec2&
   return along * dd + across * (Mat2::Identity() - dd);
 }
 
-double mass_spring_energy(const MassSpring& m, const double* x) {
+double hooke_spring_energy(const Spring& s, double k, const Vec2& xi, const Vec2& xj) {
+  const double stretch = (xi - xj).norm() - std::sqrt(s.rest_length2);
+  return 0.5 * k * stretch * stretch;
+}
+
+Vec2 hooke_spring_gradient(const Spring& s, double k, const Vec2& xi, const Vec2& xj) {
+  const Vec2 d = xi - xj;
+  const double length = d.norm();
+  if (!(length > 0.0)) return Vec2::Zero();
+  return k * (length - std::sqrt(s.rest_length2)) * (d / length);
+}
+
+Mat2 hooke_spring_hessian_block(const Spring& s, double k, const Vec2& xi, const Vec2& xj,
+                                bool project) {
+  const Vec2 d = xi - xj;
+  const double length = d.norm();
+  if (!(length > 0.0)) return Mat2::Zero();
+  const Mat2 dd = d * d.transpose() / (length * length);
+  double across = k * (1.0 - std::sqrt(s.rest_length2) / length);
+  if (project) across = std::max(0.0, across);
+  return k * dd + across * (Mat2::Identity() - dd);
+}
+
+namespace {
+
+// The sums, one instantiation per law (no branch per spring).
+template <bool Hooke>
+double energy_sum(const MassSpring& m, const double* x) {
   double e = 0.0;
-  for (const Spring& s : *m.springs) e += spring_energy(s, m.stiffness, node(x, s.i), node(x, s.j));
+  for (const Spring& s : *m.springs)
+    e += Hooke ? hooke_spring_energy(s, m.stiffness, node(x, s.i), node(x, s.j))
+               : spring_energy(s, m.stiffness, node(x, s.i), node(x, s.j));
   return e;
 }
 
-void add_mass_spring_gradient(const MassSpring& m, const double* x, double scale, double* g) {
+template <bool Hooke>
+void add_gradient(const MassSpring& m, const double* x, double scale, double* g) {
   for (const Spring& s : *m.springs) {
-    const Vec2 gi = scale * spring_gradient(s, m.stiffness, node(x, s.i), node(x, s.j));
+    const Vec2 gi = scale * (Hooke ? hooke_spring_gradient(s, m.stiffness, node(x, s.i), node(x, s.j))
+                                   : spring_gradient(s, m.stiffness, node(x, s.i), node(x, s.j)));
     g[2 * s.i] += gi.x();
     g[2 * s.i + 1] += gi.y();
     g[2 * s.j] -= gi.x();
@@ -110,19 +158,41 @@ void add_mass_spring_gradient(const MassSpring& m, const double* x, double scale
   }
 }
 
-void add_mass_spring_derivatives(const MassSpring& m, const double* x, double scale, double* g,
-                                 double* values) {
-  add_mass_spring_gradient(m, x, scale, g);
+template <bool Hooke>
+void add_hessian(const MassSpring& m, const double* x, double scale, double* values) {
   const int* slot = m.slots->data();
   for (const Spring& s : *m.springs) {
-    const Mat2 b =
-        scale * spring_hessian_block(s, m.stiffness, node(x, s.i), node(x, s.j), m.project);
+    const Vec2 xi = node(x, s.i), xj = node(x, s.j);
+    const Mat2 b = scale * (Hooke ? hooke_spring_hessian_block(s, m.stiffness, xi, xj, m.project)
+                                  : spring_hessian_block(s, m.stiffness, xi, xj, m.project));
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c) {
         const double sign = (r < 2) == (c < 2) ? 1.0 : -1.0;
         values[*slot++] += sign * b(r % 2, c % 2);
       }
   }
+}
+
+}  // namespace
+
+double mass_spring_energy(const MassSpring& m, const double* x) {
+  return m.hooke ? energy_sum<true>(m, x) : energy_sum<false>(m, x);
+}
+
+void add_mass_spring_gradient(const MassSpring& m, const double* x, double scale, double* g) {
+  if (m.hooke)
+    add_gradient<true>(m, x, scale, g);
+  else
+    add_gradient<false>(m, x, scale, g);
+}
+
+void add_mass_spring_derivatives(const MassSpring& m, const double* x, double scale, double* g,
+                                 double* values) {
+  add_mass_spring_gradient(m, x, scale, g);
+  if (m.hooke)
+    add_hessian<true>(m, x, scale, values);
+  else
+    add_hessian<false>(m, x, scale, values);
 }
 
 }  // namespace invfree

@@ -8,6 +8,14 @@
 // along d and 2k/l^2 (|d|^2 - l^2) across it, so the PSD projection of the 4x4 (the
 // tutorial's make_PSD) is [B -B; -B B] with B = A's eigenvalues clamped at zero, in closed
 // form. A spring of zero length has A = -2k I, projected to 0.
+// Hooke's law instead (the course's chapter 0, [mass_spring] law = "hooke"):
+//   E = 1/2 k (|d| - l)^2,   dE/dx_i = k (|d| - l) d / |d| = -dE/dx_j,
+//   A = k (d^ d^T + (1 - l / |d|) (I - d^ d^T)),  d^ = d / |d|,
+// eigenvalues k along d and k (1 - l/|d|) across it (negative while compressed), so the
+// projection clamps the across part at zero. A spring of zero length has no direction:
+// gradient 0, A = 0 (the across part's limit, -inf, clamped; unprojected as well).
+// The springs are the mesh's (mesh_springs) or listed node pairs (listed_springs, rest
+// lengths from the rest positions).
 // Inputs: the springs (rest data), k, node positions x (2 per node). Outputs: the energy,
 // gradient and (projected) Hessian scattered into a SparseHessian through 16 slots per
 // spring. Springs allow any deformation (no inversion filter). A whole-mesh term
@@ -32,6 +40,11 @@ struct Spring {
 // The mesh's edges, then for every pair of triangles that share their longest edge (a
 // cell's diagonal) the other diagonal; ordered and without duplicates.
 std::vector<Spring> mesh_springs(const Mesh& mesh);
+// The listed node pairs (the scene's [mass_spring] springs, checked against the mesh by
+// find_scene_problem), each with its rest length from the rest positions, in the given order.
+std::vector<Spring> listed_springs(const Mesh& mesh, const std::vector<std::array<int, 2>>& pairs);
+// Per node, how many springs end there ([gravity] per_spring's weight).
+std::vector<double> spring_counts(const std::vector<Spring>& springs, int node_count);
 // The node pairs of the springs, for the Hessian's pattern.
 std::vector<std::array<int, 2>> spring_node_pairs(const std::vector<Spring>& springs);
 // 16 slots per spring: rows (2i, 2i+1, 2j, 2j+1) x the same columns, row-major.
@@ -41,6 +54,11 @@ double spring_energy(const Spring& s, double k, const Vec2& xi, const Vec2& xj);
 Vec2 spring_gradient(const Spring& s, double k, const Vec2& xi, const Vec2& xj);  // wrt x_i
 // A, or its PSD projection B when `project`.
 Mat2 spring_hessian_block(const Spring& s, double k, const Vec2& xi, const Vec2& xj, bool project);
+// The same three for Hooke's law.
+double hooke_spring_energy(const Spring& s, double k, const Vec2& xi, const Vec2& xj);
+Vec2 hooke_spring_gradient(const Spring& s, double k, const Vec2& xi, const Vec2& xj);
+Mat2 hooke_spring_hessian_block(const Spring& s, double k, const Vec2& xi, const Vec2& xj,
+                                bool project);
 
 struct MassSpring;
 double mass_spring_energy(const MassSpring& m, const double* x);
@@ -56,6 +74,7 @@ struct MassSpring {
   bool project = true;     // the tutorial's make_PSD (off with solver.projection = "none")
   const std::vector<Spring>* springs = nullptr;
   const std::vector<int>* slots = nullptr;
+  bool hooke = false;  // Hooke's law (chapter 0) instead of the Green strain's
 
   double value(const TermPoint& at, double scale) const {
     return scale * mass_spring_energy(*this, at.z.data());

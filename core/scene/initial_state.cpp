@@ -81,9 +81,36 @@ std::optional<SceneProblem> overlapping_bodies(const SceneDef& s, const Mesh& me
 }
 }  // namespace
 
+// [mass_spring] springs: node pairs of this mesh, two different nodes each, apart at rest
+// for the green law (it divides by the rest length; Hooke's allows a zero rest length).
+std::optional<SceneProblem> spring_problem(const SceneDef& s, const Mesh& mesh) {
+  const int n = mesh.node_count();
+  const std::vector<std::string> causes = {"mesh.n_seg", "mesh.shape", "mesh.points"};
+  for (size_t k = 0; k < s.springs.size(); ++k) {
+    const auto [i, j] = s.springs[k];
+    const std::string spring = "spring " + std::to_string(k) + ": ";
+    for (int node : {i, j})
+      if (node < 0 || node >= n)
+        return SceneProblem{"mass_spring.springs",
+                            spring + "node " + std::to_string(node) +
+                                " is out of range (the mesh has " + std::to_string(n) + " nodes)",
+                            causes};
+    if (i == j)
+      return SceneProblem{
+          "mass_spring.springs", spring + "both ends are node " + std::to_string(i), {}};
+    if (s.spring_law == SpringLaw::Green && mesh.rest[i] == mesh.rest[j])
+      return SceneProblem{"mass_spring.springs",
+                          spring + "nodes " + std::to_string(i) + " and " + std::to_string(j) +
+                              " share a rest position (the green law divides by the rest length)",
+                          {"mass_spring.law", "mesh.points"}};
+  }
+  return std::nullopt;
+}
+
 std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
   const Mesh mesh = scene_mesh(s);
   const VecX x = initial_positions(s, mesh);
+  if (auto problem = spring_problem(s, mesh)) return problem;
   if (auto problem = overlapping_bodies(s, mesh, x)) return problem;
   if (auto problem = fixed_rule_problem(s, mesh)) return problem;
   if (auto problem = traction_problem(s, mesh)) return problem;

@@ -30,6 +30,35 @@ std::optional<SceneProblem> find_vector_problem(const SceneDef& s) {
   return std::nullopt;
 }
 
+// The course's chapter 0: particles (shape "points") take their mass from node_mass and
+// their forces from [mass_spring] (they have no triangles); per-spring gravity counts
+// springs.
+std::optional<SceneProblem> find_course_problem(const SceneDef& s) {
+  bool points = false;
+  for (int k = 0; k < body_count(s); ++k)
+    points = points || placed_body(s, k).shape.kind == ShapeKind::Points;
+  if (points && !(s.node_mass > 0.0))
+    return SceneProblem{"mesh.node_mass",
+                        "shape \"points\" needs node_mass > 0 (a particle has no area to weigh)",
+                        {"mesh.shape"}};
+  if (points && !s.has_mass_spring)
+    return SceneProblem{"mesh.shape",
+                        "\"points\" has no triangles for [material]'s elasticity: add a "
+                        "[mass_spring] section (springs, or none for free particles)",
+                        {"mass_spring.enabled"}};
+  if (points && s.has_contact())
+    for (int k = 0; k < body_count(s); ++k)
+      if (placed_body(s, k).shape.kind == ShapeKind::Points && !(body_edge_length(s, k) > 0.0))
+        return SceneProblem{"mesh.max_edge",
+                            "a single point has no edge length for the barrier's contact "
+                            "area: give max_edge > 0",
+                            {"ground.enabled", "ceiling.enabled", "mesh.points"}};
+  if (s.has_gravity && s.gravity_per_spring && !s.has_mass_spring)
+    return SceneProblem{
+        "gravity.per_spring", "counts springs: it needs [mass_spring]", {"mass_spring.enabled"}};
+  return std::nullopt;
+}
+
 }  // namespace
 
 const char* integrator_name(Integrator i) {
@@ -213,6 +242,7 @@ std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
     return SceneProblem{"initial.velocity", "must be finite", {}};
   if (!s.gravity.allFinite()) return SceneProblem{"gravity.g", "must be finite", {}};
   if (auto problem = find_vector_problem(s)) return problem;
+  if (auto problem = find_course_problem(s)) return problem;
   // Relations between switched-on terms.
   if (s.has_ceiling && s.has_ground) {
     const std::vector<std::string> planes = {"ground.y", "ground.enabled", "ceiling.enabled"};

@@ -10,6 +10,7 @@
 // docs/scene-keys.md and the dictionary (tests/scene_io/scene_keys_doc_main.cpp).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -22,16 +23,18 @@
 
 namespace invfree {
 
-enum class FieldType { Number, Integer, Boolean, Choice, Vector, Text, Points, Loops };
+enum class FieldType { Number, Integer, Boolean, Choice, Vector, Text, Points, Loops, Pairs };
 // "number", "integer", "boolean", "string", "[x, y]", "path" (a file's, relative to the scene
-// file), "[[x, y], ...]" (a polygon), "[[[x, y], ...], ...]" (polygons)
+// file), "[[x, y], ...]" (a polygon), "[[[x, y], ...], ...]" (polygons), "[[i, j], ...]"
+// (node index pairs: the springs)
 const char* field_type_name(FieldType type);
 
 // A field's value: a Number's double, an Integer's long long (an unsigned field's unsigned
 // long long), a Boolean's bool, a Choice's name or a Text, a Vector's Vec2, a Points' Loop,
-// Loops' loops.
+// Loops' loops, Pairs' index pairs.
+using IndexPairs = std::vector<std::array<int, 2>>;
 using FieldValue = std::variant<double, long long, unsigned long long, bool, std::string, Vec2,
-                                Loop, std::vector<Loop>>;
+                                Loop, std::vector<Loop>, IndexPairs>;
 double field_number(const FieldValue& v);  // a Number's or Integer's value as a double
 
 // E and nu, or mu and lambda, as read; apply_material turns them into the scene's Lame

@@ -54,6 +54,8 @@ int body_triangle_end(const Mesh& mesh, int k) {
 }  // namespace
 
 std::vector<double> scene_node_masses(const SceneDef& scene, const Mesh& mesh) {
+  // [mesh] node_mass: every node the same mass (particles have no area to weigh).
+  if (scene.node_mass > 0.0) return std::vector<double>(mesh.rest.size(), scene.node_mass);
   if (mesh.body_begin.size() == 1) return node_masses(mesh, scene.density, scene.mass);
   std::vector<double> mass(mesh.rest.size(), 0.0);
   for (int k = 0; k < static_cast<int>(mesh.body_begin.size()); ++k) {
@@ -77,12 +79,14 @@ std::vector<double> scene_node_contact_areas(const SceneDef& scene, const Mesh& 
   if (!scene_has_only_squares(scene)) {
     // A meshed shape's boundary node stands for half of each of its two boundary edges (the
     // square's side / n_seg on a grid); an interior node for none: it never reaches a plane
-    // before the boundary around it does. A square body keeps the tutorial's value.
+    // before the boundary around it does. A square body keeps the tutorial's value, and so
+    // does a particle (shape "points": its body's edge length, it has no boundary).
     std::vector<double> area(mesh.rest.size(), 0.0);
     const Boundary boundary = find_boundary(mesh);
     for (int k = 0; k < boundary.node_count(); ++k) area[boundary.nodes[k]] = boundary.node_area[k];
     for (int k = 0; k < bodies; ++k)
-      if (placed_body(scene, k).shape.kind == ShapeKind::Square)
+      if (const ShapeKind kind = placed_body(scene, k).shape.kind;
+          kind == ShapeKind::Square || kind == ShapeKind::Points)
         std::fill(area.begin() + mesh.body_begin[k], area.begin() + body_node_end(mesh, k),
                   body_edge_length(scene, k));
     return area;

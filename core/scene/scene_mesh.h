@@ -21,6 +21,7 @@ Mesh scene_mesh(const SceneDef& scene);
 Mesh body_mesh(const PlacedBody& body);
 // Every body is a [mesh] square grid (the case every scene before shapes was).
 bool scene_has_only_squares(const SceneDef& scene);
+// Each node's mass: [mesh] node_mass when > 0, else from density and `mass`.
 std::vector<double> scene_node_masses(const SceneDef& scene, const Mesh& mesh);
 std::vector<double> scene_node_contact_areas(const SceneDef& scene, const Mesh& mesh);
 // Per triangle, the Lame parameters of its body; empty when every body uses the scene's

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "scene_io/error_text.h"
 #include "scene_io/scene_keys.h"
@@ -117,6 +118,31 @@ std::string read_loops(const toml::node& n, std::vector<Loop>& out) {
 
 namespace {
 
+// [[i, j], ...]: node indices, each an integer >= 0 that fits an int (find_scene_problem
+// checks them against the mesh).
+std::string read_pairs(const toml::node& n, IndexPairs& out) {
+  const toml::array* a = n.as_array();
+  if (!a) return "expected an array of node pairs, e.g. [[0, 1], [1, 2]]";
+  out.clear();
+  out.reserve(a->size());
+  for (size_t k = 0; k < a->size(); ++k) {
+    const toml::array* pair = a->get(k)->as_array();
+    if (!pair || pair->size() != 2) return "pair " + std::to_string(k) + ": expected [i, j]";
+    std::array<int, 2> p{};
+    for (int e = 0; e < 2; ++e) {
+      long long v = 0;
+      if (auto r = read_int(*pair->get(e), v); !r.empty())
+        return "pair " + std::to_string(k) + ": element " + std::to_string(e) + ": " + r;
+      if (v < 0 || v > std::numeric_limits<int>::max())
+        return "pair " + std::to_string(k) + ": element " + std::to_string(e) +
+               ": must be a node index >= 0";
+      p[e] = static_cast<int>(v);
+    }
+    out.push_back(p);
+  }
+  return "";
+}
+
 std::string choice_list(const std::vector<std::string>& choices) {
   std::string out;
   for (const auto& c : choices) out += (out.empty() ? "\"" : ", \"") + c + "\"";
@@ -165,6 +191,12 @@ std::string read_value(const SceneField& f, const toml::node& n, FieldValue& out
     case FieldType::Loops: {
       std::vector<Loop> v;
       r = read_loops(n, v);
+      out = std::move(v);
+      break;
+    }
+    case FieldType::Pairs: {
+      IndexPairs v;
+      r = read_pairs(n, v);
       out = std::move(v);
       break;
     }
@@ -217,6 +249,14 @@ std::string value_text(const FieldValue& v) {
       if (k) out += ", ";
       out += value_text(FieldValue((*loops)[k]));
     }
+    out += ']';
+    return out;
+  }
+  if (const auto* pairs = std::get_if<IndexPairs>(&v)) {
+    std::string out(1, '[');
+    for (size_t k = 0; k < pairs->size(); ++k)
+      out += (k ? ", [" : "[") + std::to_string((*pairs)[k][0]) + ", " +
+             std::to_string((*pairs)[k][1]) + "]";
     out += ']';
     return out;
   }

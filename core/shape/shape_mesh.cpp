@@ -36,6 +36,8 @@ const char* geometry_key(const ShapeDef& shape) {
     case ShapeKind::Svg:
     case ShapeKind::MeshFile:
       return "file";
+    case ShapeKind::Points:
+      return "points";
     default:
       return "max_edge";
   }
@@ -78,6 +80,11 @@ ShapeMeshResult mesh_uncached(const ShapeDef& shape, double max_edge) {
   }
   if (std::string r = validate_shape(shape); !r.empty()) {
     out.error = r;
+    return out;
+  }
+  if (shape.kind == ShapeKind::Points) {  // particles: nodes only, no triangles
+    out.mesh.rest = shape.points;
+    compute_rest_data(out.mesh);
     return out;
   }
   if (!(std::isfinite(max_edge) && max_edge > 0)) {

@@ -132,6 +132,12 @@ std::string validate_shape(const ShapeDef& shape) {
         return "file: " + r;
       return "";
     }
+    case ShapeKind::Points:
+      if (shape.points.empty()) return "points: shape \"points\" needs at least one point";
+      for (size_t k = 0; k < shape.points.size(); ++k)
+        if (!shape.points[k].allFinite())
+          return "points: point " + std::to_string(k) + " must be finite";
+      return "";
     case ShapeKind::Square:
     case ShapeKind::MeshFile:
       return "";
@@ -141,7 +147,8 @@ std::string validate_shape(const ShapeDef& shape) {
 
 ShapeRegion shape_region(const ShapeDef& shape, double max_edge) {
   ShapeRegion region;
-  if (shape.kind == ShapeKind::Square || shape.kind == ShapeKind::MeshFile) {
+  if (shape.kind == ShapeKind::Square || shape.kind == ShapeKind::MeshFile ||
+      shape.kind == ShapeKind::Points) {
     region.error =
         std::string("shape: ") + enum_name(kShapeKindNames, shape.kind) + " has no outline to mesh";
     return region;
@@ -217,6 +224,9 @@ Eigen::AlignedBox2d shape_bounds(const ShapeDef& shape) {
     case ShapeKind::MeshFile:
       for (const Vec2& p : shape.loaded.nodes) box.extend(p);
       break;
+    case ShapeKind::Points:
+      for (const Vec2& p : shape.points) box.extend(p);
+      break;
   }
   return box;
 }
@@ -230,6 +240,7 @@ double shape_max_edge(const ShapeDef& shape, int n_seg) {
 
 double shape_area(const ShapeDef& shape) {
   if (shape.kind == ShapeKind::Square) return kNaN;
+  if (shape.kind == ShapeKind::Points) return 0.0;  // particles: no triangles, no area
   if (shape.kind == ShapeKind::MeshFile) {
     double a = 0;
     const auto& nodes = shape.loaded.nodes;

@@ -21,6 +21,7 @@ struct StepWorkspace {
   VecX z, x_new, v_new;
   std::vector<Spring> springs;    // a mass-spring scene's (problem.springs points here)
   std::vector<int> spring_slots;  // 16 per spring
+  std::vector<double> spring_count;  // per node, the springs ending there ([gravity] per_spring)
   Boundary boundary;              // the bodies' boundary (self-contact; built on first use)
   std::vector<std::array<int, 2>> edge_pairs;  // scratch of the intersection check
 };

@@ -154,3 +154,130 @@ TEST(MassSpring, SumOverTheMeshAssemblesEverySpring) {
 
 }  // namespace
 }  // namespace invfree
+
+namespace invfree {
+namespace {
+
+// Hooke's law (the course's chapter 0, [mass_spring] law = "hooke"): E = 1/2 k (|d| - l)^2.
+double hooke4(const Spring& s, double k, const Eigen::Vector4d& q) {
+  return hooke_spring_energy(s, k, q.head<2>(), q.tail<2>());
+}
+
+Eigen::Vector4d hooke_gradient4(const Spring& s, double k, const Eigen::Vector4d& q) {
+  const Vec2 gi = hooke_spring_gradient(s, k, q.head<2>(), q.tail<2>());
+  return (Eigen::Vector4d() << gi, -gi).finished();
+}
+
+Eigen::Matrix4d hooke_hessian4(const Spring& s, double k, const Eigen::Vector4d& q, bool project) {
+  const Mat2 a = hooke_spring_hessian_block(s, k, q.head<2>(), q.tail<2>(), project);
+  Eigen::Matrix4d h;
+  h << a, -a, -a, a;
+  return h;
+}
+
+TEST(HookeSpring, EnergyIsHalfKTimesTheStretchSquared) {
+  const Spring s{0, 1, 0.09};  // l = 0.3, simulator1.py's spring
+  const double k = 1e5;
+  EXPECT_NEAR(hooke4(s, k, Eigen::Vector4d(0.3, 0.0, 0.0, 0.0)), 0.0, 1e-20);
+  EXPECT_NEAR(hooke4(s, k, Eigen::Vector4d(0.4, 0.0, 0.0, 0.0)), 0.5 * k * 0.01, 1e-9);
+  EXPECT_NEAR(hooke4(s, k, Eigen::Vector4d(0.0, 0.1, 0.0, 0.0)), 0.5 * k * 0.04, 1e-9);
+  // simulator1.py's force on the particle: -k (|x| - l) x / |x|.
+  const Vec2 x(0.4, 0.0);
+  const Vec2 force = -hooke_spring_gradient(s, k, x, Vec2::Zero());
+  EXPECT_NEAR(force.x(), -k * 0.1, 1e-9);
+  EXPECT_EQ(force.y(), 0.0);
+}
+
+TEST(HookeSpring, DerivativesMatchFiniteDifferences) {
+  const double k = 2e4, l = 0.25;
+  const Spring s{0, 1, l * l};
+  for (double length : {1e-3, 0.05, 0.2, 0.25, 0.3, 0.6, 2.0})
+    for (double angle : {0.0, 0.3, 1.2, 2.5, -2.0}) {
+      const Vec2 xi(0.1, -0.4);
+      const Vec2 xj = xi - length * Vec2(std::cos(angle), std::sin(angle));
+      const Eigen::Vector4d q = (Eigen::Vector4d() << xi, xj).finished();
+      const Eigen::Vector4d g = hooke_gradient4(s, k, q);
+      const Eigen::Matrix4d h = hooke_hessian4(s, k, q, false);
+      // |d| is smooth away from d = 0; the step is far below the shortest length tried.
+      const double step = 1e-7;
+      for (int a = 0; a < 4; ++a) {
+        Eigen::Vector4d qp = q, qm = q;
+        qp[a] += step;
+        qm[a] -= step;
+        const double fd = (hooke4(s, k, qp) - hooke4(s, k, qm)) / (2 * step);
+        EXPECT_NEAR(g[a], fd, 1e-5 * std::max({1.0, std::abs(g[a]), std::abs(fd)}))
+            << "gradient " << a << " length " << length;
+        const Eigen::Vector4d hfd = (hooke_gradient4(s, k, qp) - hooke_gradient4(s, k, qm)) /
+                                    (2 * step);
+        for (int b = 0; b < 4; ++b)
+          EXPECT_NEAR(h(b, a), hfd[b], 1e-5 * std::max(1.0, h.cwiseAbs().maxCoeff()))
+              << "Hessian " << b << a << " length " << length << " angle " << angle;
+      }
+    }
+}
+
+TEST(HookeSpring, ProjectionIsTheClampedEigenDecompositionOfTheFourByFour) {
+  const double k = 1e3, l = 0.25;
+  const Spring s{0, 1, l * l};
+  for (double length : {1e-8, 0.1, 0.2, 0.24, 0.25, 0.26, 1.0})
+    for (double angle : {0.0, 0.7, 2.0}) {
+      const Vec2 xi(0.0, 0.0);
+      const Vec2 xj = xi + length * Vec2(std::cos(angle), std::sin(angle));
+      const Eigen::Vector4d q = (Eigen::Vector4d() << xi, xj).finished();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(hooke_hessian4(s, k, q, false));
+      const Eigen::Matrix4d expected = eig.eigenvectors() *
+                                       eig.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                                       eig.eigenvectors().transpose();
+      const Eigen::Matrix4d projected = hooke_hessian4(s, k, q, true);
+      // The across eigenvalue k (1 - l/|d|) reaches -1e10 at |d| = 1e-8: relative to it.
+      const double scale = k * std::max(1.0, l / length);
+      EXPECT_LT((projected - expected).cwiseAbs().maxCoeff(), 1e-9 * scale)
+          << "length " << length << " angle " << angle;
+      EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(projected).eigenvalues().minCoeff(),
+                -1e-9 * k);
+    }
+  // Zero length: no direction; gradient and Hessian 0.
+  const Eigen::Vector4d zero = Eigen::Vector4d::Zero();
+  EXPECT_EQ(hooke_gradient4(s, k, zero), Eigen::Vector4d::Zero());
+  EXPECT_EQ(hooke_hessian4(s, k, zero, true), Eigen::Matrix4d::Zero());
+  EXPECT_EQ(hooke4(s, k, zero), 0.5 * k * l * l);
+}
+
+// The sums dispatch on the law: the term's energy and gradient are Hooke's per spring.
+TEST(HookeSpring, TheTermSumsHookesSprings) {
+  const Mesh mesh = square_mesh(1.0, 2);
+  const auto springs = mesh_springs(mesh);
+  const auto pairs = spring_node_pairs(springs);
+  const SparseHessian hessian = build_sparse_hessian(mesh, false, pairs);
+  const auto slots = spring_slots(springs, hessian);
+  MassSpring m{true, 1e6, true, &springs, &slots, true};
+  VecX x(2 * mesh.node_count());
+  for (int i = 0; i < mesh.node_count(); ++i)
+    x.segment<2>(2 * i) = Vec2(1.2 * mesh.rest[i].x() + 0.03 * std::sin(3.0 * i),
+                               0.7 * mesh.rest[i].y() + 0.02 * std::cos(5.0 * i));
+  double e = 0.0;
+  VecX expected = VecX::Zero(x.size());
+  for (const Spring& s : springs) {
+    const Vec2 xi = x.segment<2>(2 * s.i), xj = x.segment<2>(2 * s.j);
+    e += hooke_spring_energy(s, m.stiffness, xi, xj);
+    expected.segment<2>(2 * s.i) += hooke_spring_gradient(s, m.stiffness, xi, xj);
+    expected.segment<2>(2 * s.j) -= hooke_spring_gradient(s, m.stiffness, xi, xj);
+  }
+  EXPECT_NEAR(mass_spring_energy(m, x.data()), e, 1e-12 * e);
+  VecX g = VecX::Zero(x.size());
+  SparseHessian h = hessian;
+  add_mass_spring_derivatives(m, x.data(), 1.0, g.data(), h.values());
+  EXPECT_LT((g - expected).cwiseAbs().maxCoeff(), 1e-6);
+  // Listed springs: rest lengths from the rest positions, in the given order.
+  const auto listed = listed_springs(mesh, {{{4, 0}}, {{1, 2}}});
+  ASSERT_EQ(listed.size(), 2u);
+  EXPECT_EQ(listed[0].i, 4);
+  EXPECT_EQ(listed[0].j, 0);
+  EXPECT_NEAR(listed[0].rest_length2, 0.5, 1e-15);
+  const auto count = spring_counts(listed, mesh.node_count());
+  EXPECT_EQ(count[0] + count[1] + count[2] + count[4], 4.0);
+  EXPECT_EQ(count[3], 0.0);
+}
+
+}  // namespace
+}  // namespace invfree

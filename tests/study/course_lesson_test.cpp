@@ -9,6 +9,7 @@
 
 #include "app/study/methods.h"
 #include "app/study/run.h"
+#include "app/study/stability.h"
 #include "app/study/stress_scenes.h"
 
 namespace invfree {
@@ -64,6 +65,45 @@ TEST(CourseLesson, ItIsTheSquashThatInvertsTheSprings) {
   EXPECT_EQ(springs.verdict, Verdict::Ok) << springs.message;
   ASSERT_FALSE(springs.frame.det_f.empty());
   EXPECT_GT(min_det_f(springs), 0.0);
+}
+
+}  // namespace
+}  // namespace invfree
+
+namespace invfree {
+namespace {
+
+// The course's chapter 0 in the stability table: its explicit integrator is ok on the
+// hanging mass-spring square at the demo's h (omega_max h = 0.83) and fails at h = 0.03 s
+// (omega_max h = 2.5 > 2), and the table shows that verdict.
+TEST(CourseLesson, ChapterZerosExplicitStepFailsWhenTooLarge) {
+  const auto rows = explicit_rows();
+  ASSERT_EQ(rows.size(), 2u);
+  StabilityResult result;
+  for (const ExplicitRow& row : rows) {
+    EXPECT_EQ(std::string(row.scene), "course-0-mass-spring");
+    result.explicit_cells.push_back(run_explicit_row(row, true));
+  }
+  const StabilityCell &small = result.explicit_cells[0], &large = result.explicit_cells[1];
+  EXPECT_EQ(small.verdict, Verdict::Ok) << small.message;
+  EXPECT_LT(rows[0].omega_h, 2.0);
+  EXPECT_GT(rows[1].omega_h, 2.0);
+  EXPECT_NE(large.verdict, Verdict::Ok);
+  EXPECT_NE(large.verdict, Verdict::NotApplicable) << large.message;
+  EXPECT_GT(large.fail_step, 0);
+  EXPECT_EQ(large.method, "chapter-0-explicit-h0.03");
+  const std::string md = stability_markdown(result);
+  EXPECT_NE(md.find("| chapter-0-explicit-h0.01 | `course-0-mass-spring` | 0.01 s | 0.83 | ok |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| chapter-0-explicit-h0.03 | `course-0-mass-spring` | 0.03 s | 2.50 | **" +
+                    std::string(verdict_name(large.verdict)) + "** ("),
+            std::string::npos)
+      << md;
+  EXPECT_NE(stability_csv(result).find("chapter-0-explicit-h0.03,course-0-mass-spring," +
+                                       std::string(verdict_name(large.verdict)) + "," +
+                                       std::to_string(large.fail_step) + ","),
+            std::string::npos);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 
 #include "app/study/error.h"
 #include "app/study/methods.h"
+#include "app/study/stability.h"
 #include "app/study/stress_scenes.h"
 #include "tests/run_command.h"
 #include "tests/test_paths.h"
@@ -178,7 +179,13 @@ TEST(StabilityCommand, QuickSweepClassifiesEveryCell) {
   EXPECT_EQ(lecture_cells, static_cast<int>(stress_scenes().size()));
   EXPECT_EQ(spring_squash_cells, 2);
   EXPECT_EQ(no_ccd_cells, static_cast<int>(stress_scenes().size()));
-  EXPECT_EQ(rows.size(), 1u + stability_methods().size() * stress_scenes().size());
+  // The cells, then chapter 0's explicit rows (the demo's h ok, a larger h not).
+  EXPECT_EQ(rows.size(),
+            1u + stability_methods().size() * stress_scenes().size() + explicit_rows().size());
+  EXPECT_EQ(rows[rows.size() - 2][0], "chapter-0-explicit-h0.01");
+  EXPECT_EQ(rows[rows.size() - 2][2], "ok");
+  EXPECT_EQ(rows.back()[0], "chapter-0-explicit-h0.03");
+  EXPECT_NE(rows.back()[2], "ok");
   EXPECT_GT(failures, 0) << "the stress scenes must break some method";
   fs::remove_all(dir);
 }
