@@ -101,7 +101,7 @@ INSTANTIATE_TEST_SUITE_P(Course, CourseZero,
                          });
 
 // simulator2.py adds h g inside its spring loop: a node gets g once per spring it ends.
-// [gravity] per_spring = true reproduces it; gravity once per node differs by decimetres.
+// [gravity] per_spring = true reproduces it; gravity once per node differs by up to 1.08 m.
 TEST(CourseZero, PerSpringGravityIsWhatMatchesSimulator2) {
   const auto reference = read_reference("course-0-mass-spring");
   SceneDef scene = course_scene("course-0-mass-spring");
