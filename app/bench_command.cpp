@@ -6,7 +6,10 @@
 //                  and mesh_ms: the time to mesh the scene's bodies at that n_seg, cold
 //   DIR/bench.png  log-log chart of ms per step against degrees of freedom, with the
 //                  least-squares slope (fitted over n_seg >= 32 when two such sizes ran)
-// and a table on stdout. `--fps F` then finds, by bisection on n_seg, the largest mesh
+// and a table on stdout. A scene with a reduced basis ([reduced]) also runs its full model on
+// each mesh (the same scene with basis "full"): its median ms per step and Newton iterations
+// per step are the last two columns (empty otherwise), the table says how many times faster
+// the reduced run is, and the chart draws the full model's curve. `--fps F` then finds, by bisection on n_seg, the largest mesh
 // whose median step still fits in a frame of 1/F s (one step per frame: the live mode's
 // n_seg slider). Times come from the step report's steady-clock split (core/simulation.h).
 #include <algorithm>
@@ -35,6 +38,7 @@
 #include "shape/shape_region.h"
 #include "shape/triangulate.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 
@@ -62,6 +66,8 @@ struct BenchRow {
   double self_contact = 0;  // of the split above (mean ms per step)
   double mesh_ms = 0;       // meshing every body once, cold (cold_mesh_ms)
   std::string solver;
+  // A reduced scene's full model on the same mesh (median ms, Newton per step); 0: none.
+  double full_median_ms = 0, full_newton = 0;
 };
 
 // The wall-clock ms to mesh every body of `scene` from its keys, as a scene's first load
@@ -127,6 +133,8 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
   row.dofs = 2 * row.nodes + (scene.has_ceiling ? 1 : 0);
   row.solver =
       scene.integrator != Integrator::SymplecticEuler ? linear_solver_backend(sim) : "explicit";
+  if (scene.reduced_basis != ReducedBasis::Full)
+    row.solver = "dense-ldlt-r" + std::to_string(sim.workspace->newton.reduced.basis.cols());
   std::vector<double> ms;
   ms.reserve(steps);
   long newton = 0, pcg = 0, factorizations = 0;
@@ -188,7 +196,8 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
   o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,newton_worst,"
        "newton_worst_step,assembly_ms,factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,"
-       "factorizations_per_step,solver,self_contact_ms,mesh_ms\n";
+       "factorizations_per_step,solver,self_contact_ms,mesh_ms,full_median_ms,"
+       "full_newton_per_step\n";
   for (const auto& r : rows)
     o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
       << format_number(r.mean_ms, "%.6g") << "," << format_number(r.median_ms, "%.6g") << ","
@@ -197,7 +206,9 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
       << format_number(r.solve, "%.6g") << "," << format_number(r.line_search, "%.6g") << ","
       << format_number(r.other, "%.6g") << "," << format_number(r.pcg, "%.5g") << ","
       << format_number(r.factorizations, "%.5g") << "," << r.solver << ","
-      << format_number(r.self_contact, "%.6g") << "," << format_number(r.mesh_ms, "%.6g") << "\n";
+      << format_number(r.self_contact, "%.6g") << "," << format_number(r.mesh_ms, "%.6g") << ","
+      << (r.full_median_ms > 0 ? format_number(r.full_median_ms, "%.6g") : "") << ","
+      << (r.full_median_ms > 0 ? format_number(r.full_newton, "%.5g") : "") << "\n";
   return o.str();
 }
 
@@ -274,6 +285,15 @@ ChartSpec chart(const std::vector<BenchRow>& rows, const std::string& scene_name
     spec.series.push_back(target);
   }
   spec.series.push_back(total);
+  if (!rows.empty() && rows.front().full_median_ms > 0) {
+    Series full{"full model, same mesh (median)", {}, {}, Rgb{0.45f, 0.45f, 0.45f}};
+    full.dash = 8.0;
+    for (const auto& r : rows) full.x.push_back(r.dofs), full.y.push_back(r.full_median_ms);
+    spec.series.push_back(full);
+    spec.notes.push_back("reduced basis: Newton solves " + rows.front().solver.substr(12) +
+                         " unknowns densely; assembly and the line search stay over the full "
+                         "mesh (docs/scenes.md, \"Reduced bases\")");
+  }
   spec.series.push_back(assembly);
   spec.series.push_back(linear);
   spec.series.push_back(search);
@@ -312,6 +332,10 @@ void print_row(const BenchRow& row, bool reference) {
   for (int k = 0; k < 3; ++k)
     if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
       speedup = "  " + format_number(kReferenceMs[k] / row.median_ms, "%.4g") + "x the reference";
+  if (row.full_median_ms > 0.0 && row.median_ms > 0.0)
+    speedup = "  full model " + format_number(row.full_median_ms, "%.4g") + " ms (" +
+              format_number(row.full_newton, "%.3g") + " newton): " +
+              format_number(row.full_median_ms / row.median_ms, "%.3g") + "x faster reduced";
   std::printf(
       "%-6d %8d %10d %6d %10.4f %10.4f %7.2f %6d %9.4f %9.4f %9.4f %9.4f %9.4f %6.2f %9.3f  %s%s\n",
       row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton,
@@ -373,7 +397,14 @@ int run_bench(const BenchOptions& opt) {
   int code = exit_code::kOk;
   for (int n : sizes) {
     BenchRow row;
-    const bool ok = run_size(*scene, n, opt.steps, row, &error, &code);
+    bool ok = run_size(*scene, n, opt.steps, row, &error, &code);
+    if (ok && scene->reduced_basis != ReducedBasis::Full) {
+      SceneDef full = *scene;
+      full.reduced_basis = ReducedBasis::Full;
+      BenchRow full_row;
+      ok = run_size(full, n, opt.steps, full_row, &error, &code);
+      if (ok) row.full_median_ms = full_row.median_ms, row.full_newton = full_row.newton;
+    }
     if (!ok && row.steps == 0) break;
     if (!ok) row.solver += " (failed at step " + std::to_string(row.steps + 1) + ")";
     rows.push_back(row);

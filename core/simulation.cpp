@@ -12,6 +12,7 @@
 #include "scene/fixed_nodes.h"
 #include "scene/initial_state.h"
 #include "scene/scene_mesh.h"
+#include "scene/reduced_basis.h"
 #include "solver/step_workspace.h"
 
 namespace invfree {
@@ -226,7 +227,8 @@ Simulation make_simulation(const SceneDef& scene) {
     sim.pressure_edges = pressure_edges(scene, sim.mesh, boundary);
   }
   ws.min_node_mass = *std::min_element(sim.node_mass.begin(), sim.node_mass.end());
-  if (scene.integrator != Integrator::SymplecticEuler)
+  ws.reduced.basis = build_reduced_basis(scene, sim.mesh).basis;  // empty: full space
+  if (scene.integrator != Integrator::SymplecticEuler && !ws.reduced.on())
     prepare_linear_solver(ws, newton_settings(scene).linear_solver,
                           scene.projection != HessianProjection::None);
   const int dofs = 2 * sim.mesh.node_count();

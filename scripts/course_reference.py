@@ -12,6 +12,12 @@ With a tutorial that has chapter 9 (phys-sim-book/solid-sim-tutorial), also runs
 tests/data/course/modes-cantilever.txt; needs no matplotlib (it is stubbed: linear.py draws
 only after eigsh).
 
+Chapter 9 (9_reduced_DOF: course-9-affine, -quadratic, -cubic, -modal) runs its
+simulator.py with its `method` and `order` lines set to the scene's basis (REDUCED_BASIS,
+as a student edits them); for the modal scene NeoHookeanEnergy's two integer dP/dF arrays
+are also made floating point (_float_stress_derivative says why). Chapter 9 needs
+phys-sim-book/solid-sim-tutorial.
+
 Chapter 0 (0_getting_started: course-0-free-fall, course-0-spring, course-0-mass-spring)
 has no step_forward: run_chapter0 execs each simulatorN.py with a globals dict and records
 the state from the pygame stub's event.get, which runs at the top of every loop
@@ -25,6 +31,7 @@ Nothing of the tutorial is stored in this repository: only the numbers this scri
 import contextlib
 import io
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -38,7 +45,21 @@ CHAPTERS = [
     ("5_mov_dirichlet", "course-5-moving-dirichlet"),
     ("7_self_contact", "stack"),
     ("8_self_friction", "stack-friction"),
+    ("9_reduced_DOF", "course-9-affine"),
+    ("9_reduced_DOF", "course-9-quadratic"),
+    ("9_reduced_DOF", "course-9-cubic"),
+    ("9_reduced_DOF", "course-9-modal"),
 ]
+# Chapter 9's basis, which its simulator.py sets in two lines (`method`, `order`: 1 and 1, the
+# affine basis): the scene's (method, order), written into those lines before the script
+# runs (_set_reduced_basis), as a student edits them. Modal: 12 modes (a count that splits no
+# degenerate pair of the square's eigenvalues; docs/scenes.md).
+REDUCED_BASIS = {
+    "course-9-affine": (1, 1),
+    "course-9-quadratic": (1, 2),
+    "course-9-cubic": (1, 3),
+    "course-9-modal": (2, 12),
+}
 STEPS = 200
 EVERY = 10
 TOL = 1e-6
@@ -101,14 +122,46 @@ def _chapter_files(tutorial, chapter, into):
                 g.write(text)
 
 
+def _set_reduced_basis(source, method, order):
+    """Chapter 9's simulator.py with its `method` and `order` lines set, as a student edits
+    them (the script's own values are 1 and 1, the affine basis)."""
+    lines = source.split("\n")
+    for key, value in (("method", method), ("order", order)):
+        hits = [k for k, line in enumerate(lines) if re.match(r"%s = \d+" % key, line)]
+        if len(hits) != 1:
+            raise RuntimeError("simulator.py: expected one line '%s = <n>'" % key)
+        lines[hits[0]] = re.sub(r"= \d+", "= %d" % value, lines[hits[0]], count=1)
+    return "\n".join(lines)
+
+
+def _float_stress_derivative(work):
+    """Chapter 9's NeoHookeanEnergy.d2Psi_div_dF2 fills two numpy arrays made from integer
+    literals (`np.array([[0, 0, 0, 0]] * 4)`), so every entry of dP/dF it assigns is
+    truncated to an integer: about 1e-4 relative at the square's mu = 7142.857. Newton only
+    steers by that Hessian, so the converged steps are the same, but the modal basis is its
+    eigenvectors at rest: the truncation tilts the subspace and the demo's trajectory moves by
+    1.3e-5 m. For the modal scene the two arrays are made floating point (the one change
+    besides the tolerance; docs/scenes.md, "Reduced bases")."""
+    path = os.path.join(work, "NeoHookeanEnergy.py")
+    text = open(path).read()
+    for name in ("M", "dP_div_dF"):
+        old = "%s = np.array([[0, 0, 0, 0]] * 4)" % name
+        if text.count(old) != 1:
+            raise RuntimeError("NeoHookeanEnergy.py: expected one line '%s'" % old)
+        text = text.replace(old, "%s = np.array([[0.0, 0.0, 0.0, 0.0]] * 4)" % name)
+    open(path, "w").write(text)
+
+
 class _Done(Exception):
     pass
 
 
-def run_chapter(tutorial, chapter, body_nodes_only=True):
+def run_chapter(tutorial, chapter, body_nodes_only=True, reduced_basis=None):
     samples = []
     with tempfile.TemporaryDirectory() as work:
         _chapter_files(tutorial, chapter, work)
+        if reduced_basis is not None and reduced_basis[0] == 2:
+            _float_stress_derivative(work)
         old_path, old_cwd = list(sys.path), os.getcwd()
         sys.path.insert(0, work)
         os.chdir(work)
@@ -121,6 +174,7 @@ def run_chapter(tutorial, chapter, body_nodes_only=True):
         sys.modules["pygame"] = _pygame_stub()
         try:
             import time_integrator
+
 
             original = time_integrator.step_forward
             state = {"step": 0}
@@ -145,7 +199,10 @@ def run_chapter(tutorial, chapter, body_nodes_only=True):
             time_integrator.step_forward = step_forward
             with contextlib.redirect_stdout(io.StringIO()):
                 try:
-                    exec(compile(open("simulator.py").read(), "simulator.py", "exec"),
+                    source = open("simulator.py").read()
+                    if reduced_basis is not None:
+                        source = _set_reduced_basis(source, *reduced_basis)
+                    exec(compile(source, "simulator.py", "exec"),
                          {"__name__": "__main__"})
                 except _Done:
                     pass
@@ -276,48 +333,6 @@ def run_chapter0(tutorial, script, every, steps, fixed_nodes):
     return samples
 
 
-def run_chapter0(tutorial, script, every, steps, fixed_nodes):
-    """Runs 0_getting_started/<script> and returns [(step, [x0, y0, ...])], recorded at the
-    top of every loop iteration (the stub's pygame.event.get) while time_step % every == 0,
-    up to `steps` steps or the script's own stop (simulator0.py's input() at the ground)."""
-    samples = []
-    with tempfile.TemporaryDirectory() as work:
-        _chapter_files(tutorial, "0_getting_started", work)
-        old_path, old_cwd = list(sys.path), os.getcwd()
-        sys.path.insert(0, work)
-        os.chdir(work)
-        sys.modules.pop("square_mesh", None)
-        scope = {"__name__": "__main__"}
-
-        def record():
-            step = scope["time_step"]
-            if step % every == 0:
-                x = scope["x"]
-                xs = [float(c) for c in (x.reshape(-1) if hasattr(x, "reshape") else x)]
-                samples.append((step, fixed_nodes + xs))
-            if step >= steps:
-                raise _Done()
-            return []
-
-        def stop(*args):  # simulator0.py waits for a key once the particle is down
-            raise _Done()
-
-        stub = _pygame_stub()
-        stub.event = types.SimpleNamespace(get=record)
-        sys.modules["pygame"] = stub
-        scope["input"] = stop
-        try:
-            with contextlib.redirect_stdout(io.StringIO()):
-                try:
-                    exec(compile(open(script).read(), script, "exec"), scope)
-                except _Done:
-                    pass
-        finally:
-            sys.path[:] = old_path
-            os.chdir(old_cwd)
-    return samples
-
-
 def main():
     if len(sys.argv) < 2:
         print(__doc__)
@@ -342,9 +357,13 @@ def main():
     for chapter, scene in CHAPTERS:
         if only and scene not in only:
             continue
-        samples = run_chapter(tutorial, chapter)
+        samples = run_chapter(tutorial, chapter, reduced_basis=REDUCED_BASIS.get(scene))
         path = os.path.join(out_dir, scene + ".txt")
         with open(path, "w") as f:
+            basis = REDUCED_BASIS.get(scene)
+            if basis:
+                chapter += " (method = %d, order = %d%s)" % (
+                    basis + ("; NeoHookeanEnergy's dP/dF arrays floating point" if basis[0] == 2 else "",))
             f.write("# %s of solid-sim-tutorial, tol %g, node positions (m) every %d steps; "
                     "made by scripts/course_reference.py\n" % (chapter, TOL, EVERY))
             for step, xs in samples:

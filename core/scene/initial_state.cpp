@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scene/fixed_nodes.h"
+#include "scene/reduced_basis.h"
 #include "scene/scene_mesh.h"
 #include "scene/tractions.h"
 
@@ -79,7 +80,6 @@ std::optional<SceneProblem> overlapping_bodies(const SceneDef& s, const Mesh& me
                             {"self_contact.enabled", "mesh.side", "mesh.n_seg"}};
   return std::nullopt;
 }
-}  // namespace
 
 // [mass_spring] springs: node pairs of this mesh, two different nodes each, apart at rest
 // for the green law (it divides by the rest length; Hooke's allows a zero rest length).
@@ -106,15 +106,17 @@ std::optional<SceneProblem> spring_problem(const SceneDef& s, const Mesh& mesh) 
   }
   return std::nullopt;
 }
+}  // namespace
 
 std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
   const Mesh mesh = scene_mesh(s);
-  const VecX x = initial_positions(s, mesh);
   if (auto problem = spring_problem(s, mesh)) return problem;
+  const VecX x = initial_positions(s, mesh);
   if (auto problem = overlapping_bodies(s, mesh, x)) return problem;
   if (auto problem = fixed_rule_problem(s, mesh)) return problem;
   if (auto problem = traction_problem(s, mesh)) return problem;
   if (auto problem = static_support_problem(s, mesh)) return problem;
+  if (auto problem = reduced_basis_problem(s, mesh)) return problem;
   const bool needs_det_f_positive = s.has_triangle_elasticity() && !model_allows_inversion(s.model);
   for (const auto& tri : mesh.triangles) {
     // The rest triangle's area must be a normal double: the rest shape's inverse and the

@@ -74,9 +74,10 @@ struct Newton {
   bool reduced_direction() {
     ReducedSolve& r = ws.reduced;
     auto t = Clock::now();
-    r.hessian_times_basis.noalias() = ws.hessian.matrix * r.basis;
-    r.hessian.noalias() = r.basis.transpose() * r.hessian_times_basis;
-    r.rhs.noalias() = r.basis.transpose() * ws.rhs;
+    if (r.transposed.cols() != r.basis.rows()) r.transposed = r.basis.transpose();
+    r.transposed_times_hessian.noalias() = r.transposed * ws.hessian.matrix;
+    r.hessian.noalias() = r.transposed_times_hessian * r.basis;
+    r.rhs.noalias() = r.transposed * ws.rhs;
     result.assembly_ms += ms_since(t);
     t = Clock::now();
     r.factor.compute(r.hessian);
