@@ -23,14 +23,44 @@ FrameLayout frame_layout(int width, int height, PanelMode panel, double text_sca
   return l;
 }
 
+namespace {
+
+// A particle body's rest bounding box (its points, moved to its offset): zero-sized for a
+// lone particle; framed as the square when it lists no points.
+BodyExtent particle_extent(const PlacedBody& b) {
+  if (b.shape.points.empty()) {
+    PlacedBody square = b;
+    square.shape.kind = ShapeKind::Square;
+    return body_rest_extent(square);
+  }
+  BodyExtent e;
+  e.x0 = e.y0 = INFINITY;
+  e.x1 = e.y1 = -INFINITY;
+  for (const Vec2& p : b.shape.points) {
+    e.x0 = std::min(e.x0, b.offset.x() + p.x());
+    e.x1 = std::max(e.x1, b.offset.x() + p.x());
+    e.y0 = std::min(e.y0, b.offset.y() + p.y());
+    e.y1 = std::max(e.y1, b.offset.y() + p.y());
+  }
+  e.width = e.x1 - e.x0;
+  e.height = e.y1 - e.y0;
+  return e;
+}
+
+}  // namespace
+
 WorldBox scene_world_box(const SceneDef& scene) {
   // Every body's rest bounding box (body_extent.h: a square's exactly as before shapes).
   // `side` and `half` are the largest body's size and half width, `tall` its height.
   double bx0 = INFINITY, bx1 = -INFINITY, by0 = INFINITY, by1 = -INFINITY, side = 0.0;
   double sides = 0.0, half = 0.0, tall = 0.0;
-  bool shaped = false;  // some body is not a square
+  bool shaped = false;     // some body is not a square
+  bool particles = false;  // some body is particles (ShapeKind::Points, no triangles)
   for (int k = 0; k < body_count(scene); ++k) {
-    const BodyExtent b = body_rest_extent(scene, k);
+    const PlacedBody placed = placed_body(scene, k);
+    const BodyExtent b =
+        placed.shape.kind == ShapeKind::Points ? particle_extent(placed) : body_rest_extent(placed);
+    particles = particles || placed.shape.kind == ShapeKind::Points;
     bx0 = std::min(bx0, b.x0);
     bx1 = std::max(bx1, b.x1);
     by0 = std::min(by0, b.y0);
@@ -39,7 +69,7 @@ WorldBox scene_world_box(const SceneDef& scene) {
     sides += b.width;
     half = std::max(half, 0.5 * b.width);
     tall = std::max(tall, b.height);
-    shaped = shaped || placed_body(scene, k).shape.kind != ShapeKind::Square;
+    shaped = shaped || placed.shape.kind != ShapeKind::Square;
   }
   double y0 = by0, y1 = by1;
   if (scene.has_ground) y0 = std::min(y0, scene.ground_y);
@@ -60,6 +90,19 @@ WorldBox scene_world_box(const SceneDef& scene) {
   const double one_body = (shaped ? 2.0 * half : half) * (spread - 1.0);
   const double margin = (body_count(scene) > 1 ? sides * spread : one_body) + 0.15 * side;
   double x0 = bx0 - margin, x1 = bx1 + margin;
+  if (particles) {
+    // Particles on springs swing and stretch about where they start (a lone one has no
+    // size at all): room of half the largest body's size, at least kParticleReach, on
+    // every side.
+    const double reach = std::max(0.5 * side, kParticleReach);
+    x0 = std::min(x0, bx0 - reach);
+    x1 = std::max(x1, bx1 + reach);
+    y0 = std::min(y0, by0 - reach);
+    y1 = std::max(y1, by1 + reach);
+    // Falling freely (nothing holds them, no ground): room to fall twice that below, so
+    // the first half second of a free fall from rest (1.25 m) is in the picture.
+    if (scene.has_gravity && !scene.has_ground && !scene.has_fixed) y0 -= 2.0 * reach;
+  }
   if (scene.has_ground && scene.ground_normal.x() != 0.0) {
     // A slope (the course's 4_friction): room for the body to slide one side length down
     // it, and the ground's lower end in the picture.
@@ -73,7 +116,18 @@ WorldBox scene_world_box(const SceneDef& scene) {
   return {x0, x1, y0 - band, y1 + band};
 }
 
-Camera fit_camera(const WorldBox& box, const PixelRect& rect) {
+Camera fit_camera(const WorldBox& box_in, const PixelRect& rect) {
+  // A box of no size (a lone particle) or no finite size gets kParticleReach around its
+  // centre (or around the origin), so that the scale stays finite.
+  WorldBox box = box_in;
+  const auto widen = [](double& lo, double& hi) {
+    if (hi - lo > 0.0 && std::isfinite(hi - lo)) return;
+    const double mid = std::isfinite(lo + hi) ? 0.5 * (lo + hi) : 0.0;
+    lo = mid - kParticleReach;
+    hi = mid + kParticleReach;
+  };
+  widen(box.x0, box.x1);
+  widen(box.y0, box.y1);
   Camera c;
   c.pixels_per_metre = std::min(rect.w / (box.x1 - box.x0), rect.h / (box.y1 - box.y0));
   const double cx = 0.5 * (box.x0 + box.x1), cy = 0.5 * (box.y0 + box.y1);

@@ -9,9 +9,11 @@
 // the ground, the ceiling's start, a band of each plane, and the widest a body can get when
 // squashed to the ceiling's stop gap at constant area (det F <= 1 under compression; a
 // shape that is not a square may spread to one side only, so it gets that width on either
-// side). With no plane (plate-hole) the bodies get a margin of at least a tenth of the
-// largest one's size on every side. A body that leaves that box (a free fall with no
-// ground) leaves the picture.
+// side). Particles (a body of ShapeKind::Points: the course's chapter 0) get room of half
+// their size, at least kParticleReach, on every side, and twice that below when they fall
+// freely (gravity, nothing fixed, no ground). With no plane (plate-hole) the bodies get a margin of
+// at least a tenth of the largest one's size on every side. A body that leaves that box (a free
+// fall with no ground) leaves the picture.
 #pragma once
 
 #include "scene/scene.h"
@@ -50,6 +52,9 @@ struct WorldBox {
 
 WorldBox scene_world_box(const SceneDef& scene);
 
+// Around particles, and around a box of no size (fit_camera), at least this much (m).
+constexpr double kParticleReach = 0.5;
+
 struct Camera {
   double pixels_per_metre = 1.0;
   Vec2 origin = Vec2::Zero();  // pixel position of the world origin
@@ -62,7 +67,8 @@ struct Camera {
   }
 };
 
-// The largest uniform scale showing all of `box` inside `rect`, centred.
+// The largest uniform scale showing all of `box` inside `rect`, centred (a box of no size
+// along an axis is widened to 2 kParticleReach there).
 Camera fit_camera(const WorldBox& box, const PixelRect& rect);
 
 // The camera of a scene in a frame of this layout.

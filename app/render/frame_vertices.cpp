@@ -231,6 +231,44 @@ void add_inverted_rings(Shapes& world, const std::vector<Vec2>& p, const FrameSt
   }
 }
 
+// A filled disk antialiased as the strokes are: a fan of wedges whose `across` runs from 0
+// at the centre to radius + 1 at the rim, so the shader's coverage ramp falls off over the
+// last pixel (exact along each spoke; the chords' midpoints lie within (r + 1)(1 - cos(pi /
+// segments)) of the true distance, a twentieth of a pixel at 10 pixels).
+void add_dot(Shapes& s, Vec2 c, double radius, Rgba color) {
+  if (!(radius > 0.0) || !std::isfinite(c.x()) || !std::isfinite(c.y())) return;
+  const double outer = radius + 1.0;
+  const int segments = std::clamp(static_cast<int>(std::ceil(2.0 * M_PI * outer / 3.0)), 12, 64);
+  const float half = float(radius);
+  for (int k = 0; k < segments; ++k) {
+    const double a0 = 2.0 * M_PI * k / segments, a1 = 2.0 * M_PI * (k + 1) / segments;
+    const Vec2 p0 = c + outer * Vec2(std::cos(a0), std::sin(a0));
+    const Vec2 p1 = c + outer * Vec2(std::cos(a1), std::sin(a1));
+    s.push_back({float(c.x()), float(c.y()), color, 0.0f, half});
+    s.push_back({float(p0.x()), float(p0.y()), color, float(outer), half});
+    s.push_back({float(p1.x()), float(p1.y()), color, float(outer), half});
+  }
+}
+
+// The overlays (FrameState::overlays), each its segments' strokes and then its dots over
+// them, in order.
+void add_overlays(Shapes& world, const FrameState& state, const Camera& cam, double s) {
+  for (const Overlay& o : state.overlays) {
+    const Rgba color = rgba(o.color);
+    const size_t n = o.points.size();
+    const double width = std::max(1.0, o.stroke_width * s);
+    for (const auto& [a, b] : o.segments) {
+      if (a < 0 || b < 0 || static_cast<size_t>(a) >= n || static_cast<size_t>(b) >= n) continue;
+      const Vec2 pa = cam.to_pixel(o.points[static_cast<size_t>(a)]);
+      const Vec2 pb = cam.to_pixel(o.points[static_cast<size_t>(b)]);
+      if (pa.allFinite() && pb.allFinite()) add_segment(world, pa, pb, width, color);
+    }
+    if (!(o.dot_radius > 0.0)) continue;
+    const double r = std::max(kMinOverlayDotPixels * s, o.dot_radius * cam.pixels_per_metre);
+    for (const Vec2& p : o.points) add_dot(world, cam.to_pixel(p), r, color);
+  }
+}
+
 // The principal stress glyphs: per triangle a cross of two strokes centred at its
 // centroid along its principal directions, each as long as its stress's magnitude relative
 // to the frame's largest (kGlyphLength of the spacing for that one), tension red and
@@ -476,7 +514,12 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   double y = pad + res.atlas->ascent(kTitle);
   res.add_text(scene.name, kTitle, x0, y, kInk);
   y += 1.25 * body;
-  if (scene.has_mass_spring) {  // the course's springs: their stiffness, no Lame parameters
+  const bool lone_particles = state.triangles.empty() &&
+                              (state.overlays.empty() || state.overlays.front().segments.empty());
+  if (lone_particles) {  // (the course's free fall: no springs, no material)
+    res.add_text("particles", kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+  } else if (scene.has_mass_spring) {  // the course's springs: their stiffness, no Lame parameters
     res.add_text("mass-spring", kBody, x0, y, kMutedInk);
     y += 1.3 * body;
     res.add_text("k = " + format_si(scene.spring_stiffness, "N/m"), kBody, x0, y, kMutedInk);
@@ -493,6 +536,22 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   y += 1.3 * body;
   res.add_text("step " + std::to_string(state.step), kBody, x0, y, kInk);
   y += 2.0 * body;
+  if (state.triangles.empty()) {
+    // Particles only (the course's chapter 0): no det F, no field, no colour bar; how many
+    // particles and springs (the first overlay's) instead.
+    const size_t nodes = state.x.size() / 2;
+    const size_t springs = state.overlays.empty() ? 0 : state.overlays.front().segments.size();
+    res.add_text("no triangles", kBody, x0, y, kMutedInk);
+    y += 1.3 * body;
+    res.add_text(std::to_string(nodes) + (nodes == 1 ? " particle" : " particles"), kBody, x0, y,
+                 kInk);
+    if (springs > 0) {
+      y += 1.3 * body;
+      res.add_text(std::to_string(springs) + (springs == 1 ? " spring" : " springs"), kBody, x0, y,
+                   kInk);
+    }
+    return backdrop_end;
+  }
   char buf[64];
   std::snprintf(buf, sizeof buf, "min det F = %.3f", det_lo);
   res.add_text(buf, kBody, x0, y, kInk);
@@ -576,6 +635,7 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
 
 void FrameVertices::add_text(std::string_view s, int size, double x, double baseline, Rgba color,
                              double align) {
+  words.emplace_back(s);
   if (align != 0.0) x -= align * atlas->text_width(s, size);
   glyphs.clear();
   atlas->layout(s, size, x, baseline, &glyphs);
@@ -591,6 +651,7 @@ ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, cons
   v.shapes.clear();
   v.hatched.clear();
   v.text.clear();
+  v.words.clear();
   // The world (clipped to the plot area when drawn), then the panel (not clipped).
   const int nodes = static_cast<int>(state.x.size() / 2);
   std::vector<Vec2> p(static_cast<size_t>(nodes));
@@ -598,8 +659,8 @@ ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, cons
   // Coloured by another field than det F (when the state has its values): its scale.
   FieldScale scale;
   FieldStats stats;
-  const bool by_field =
-      state.color_by != TriangleField::DetF && state.field.size() == state.triangles.size();
+  const bool by_field = state.color_by != TriangleField::DetF && !state.triangles.empty() &&
+                        state.field.size() == state.triangles.size();
   if (by_field) {
     stats = field_stats(state.color_by, state.field);
     scale = options.field_scale && options.field_scale->field == state.color_by
@@ -613,6 +674,7 @@ ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, cons
   add_strokes(v, L, cam, state, p, options.edges);
   if (options.ring_inverted) add_inverted_rings(v.shapes, p, state, L.scale);
   if (options.stress_glyphs) add_stress_glyphs(v, p, state, L);
+  add_overlays(v.shapes, state, cam, L.scale);
   add_selected_outline(v.shapes, p, state, options.selected_triangle, L.scale);
   ranges.world_end = v.shapes.size();
   const DetFSummary det = summarize_det_f(state);

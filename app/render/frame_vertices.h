@@ -1,14 +1,15 @@
 // The vertex lists of one frame, built on the CPU from a FrameState: the world (the
 // planes' hatched bands and fills, the triangles coloured by det F or another field, the
 // mesh edges, the body's outline, the planes' surfaces, the inverted triangles' rings, the
-// stress glyphs, the selected triangle's outline) and the side panel (words, numbers and the colour
-// bar), in the frame's pixels (x right, y down). renderer.cpp uploads and draws them; the
-// layout of a frame is camera.h's, its words frame_text.h's.
+// stress glyphs, the overlays' strokes and dots, the selected triangle's outline) and the side
+// panel (words, numbers and the colour bar), in the frame's pixels (x right, y down). renderer.cpp
+// uploads and draws them; the layout of a frame is camera.h's, its words frame_text.h's.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -57,6 +58,7 @@ struct FrameVertices {
   Shapes shapes;   // fills and strokes, in the order of ShapeRanges
   Shapes hatched;  // the planes' surface bands, drawn with the hatch pattern
   std::vector<TextVertex> text;
+  std::vector<std::string> words;  // every string add_text drew, in order (tests read them)
   // The text's font: the atlas built at font_sizes (indexed by FontSize).
   const TextAtlas* atlas = nullptr;
   std::vector<double> font_sizes;

@@ -9,6 +9,9 @@
 #include "app/render/gl_api.h"
 #include "app/render/shader_sources.h"
 #include "app/render/text_atlas.h"
+#include "potential/mass_spring.h"
+#include "scene/reduced_basis.h"
+#include "solver/step_workspace.h"
 
 namespace invfree::render {
 
@@ -295,7 +298,57 @@ void principal_stresses(const Simulation& sim, std::vector<Vec2>* values,
   }
 }
 
+// The mesh's spacing: the side of a right isosceles triangle of the mean rest area (a
+// square mesh's cell side); 0 without triangles.
+double mesh_spacing(const Mesh& mesh) {
+  if (mesh.rest_area.empty()) return 0.0;
+  double area = 0.0;
+  for (const double a : mesh.rest_area) area += std::abs(a);
+  return std::sqrt(2.0 * area / static_cast<double>(mesh.rest_area.size()));
+}
+
 }  // namespace
+
+double particle_dot_radius(const std::vector<Vec2>& rest,
+                           const std::vector<std::array<int, 2>>& springs) {
+  constexpr double kLoneParticle = 0.1;  // the tutorial's simulator0/1 (m)
+  std::vector<double> lengths;
+  lengths.reserve(springs.size());
+  const int n = static_cast<int>(rest.size());
+  for (const auto& [a, b] : springs) {
+    if (a < 0 || b < 0 || a >= n || b >= n) continue;
+    const double l = (rest[static_cast<size_t>(a)] - rest[static_cast<size_t>(b)]).norm();
+    if (l > 0.0 && std::isfinite(l)) lengths.push_back(l);
+  }
+  if (lengths.empty()) return kLoneParticle;
+  const auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), mid, lengths.end());
+  return std::min(kLoneParticle, 0.1 * *mid);
+}
+
+Overlay particle_overlay(const VecX& x, const std::vector<std::array<int, 2>>& springs,
+                         double dot_radius) {
+  Overlay o;
+  const int n = static_cast<int>(x.size() / 2);
+  o.points.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) o.points[static_cast<size_t>(i)] = Vec2(x[2 * i], x[2 * i + 1]);
+  for (const auto& [a, b] : springs)
+    if (a >= 0 && b >= 0 && a < n && b < n && a != b) o.segments.push_back({a, b});
+  o.color = kParticleColor;
+  o.dot_radius = dot_radius;
+  o.stroke_width = 1.5;
+  return o;
+}
+
+Overlay anchor_overlay(const std::array<Vec2, 3>& corners, double spacing) {
+  Overlay o;
+  o.points.assign(corners.begin(), corners.end());
+  o.segments = {{0, 1}, {1, 2}, {2, 0}};
+  o.color = kAnchorColor;
+  o.dot_radius = 0.2 * spacing;  // twice the tutorial's 0.1 side / n_seg, to be seen
+  o.stroke_width = 2.5;
+  return o;
+}
 
 FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f,
                                const CaptureOptions& capture) {
@@ -311,6 +364,16 @@ FrameState capture_frame_state(const Simulation& sim, const std::vector<double>*
     triangle_field(sim, capture.color_by, &f.field);
   if (capture.stress_glyphs && sim.scene.has_triangle_elasticity())
     principal_stresses(sim, &f.principal_stress, &f.principal_direction);
+  if (sim.mesh.triangles.empty() && sim.mesh.node_count() > 0) {
+    // Particles (the course's chapter 0): no triangles to fill, so the nodes and springs.
+    const std::vector<std::array<int, 2>> springs = sim.workspace
+                                                        ? spring_node_pairs(sim.workspace->springs)
+                                                        : std::vector<std::array<int, 2>>{};
+    f.overlays.push_back(
+        particle_overlay(sim.x, springs, particle_dot_radius(sim.mesh.rest, springs)));
+  }
+  if (const auto anchors = affine_anchor_triangle(sim.scene, sim.mesh, sim.x))
+    f.overlays.push_back(anchor_overlay(*anchors, mesh_spacing(sim.mesh)));
   f.ceiling_y = sim.ceiling_y;
   f.time = sim.time;
   f.step = sim.step_count;

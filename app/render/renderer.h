@@ -13,8 +13,13 @@
 //    inverted triangles when there are any), and the colour bar of the field the
 //    triangles are coloured by, with numeric ticks, markers at the current min and max, and the det
 //    F <= 0 swatch (a ring for the other fields: inverted triangles are ringed in every colouring);
+//  - overlays (FrameState::overlays) over the world: points as dots and segments between
+//    them as strokes, one colour each: a mesh without triangles' particles and springs
+//    (the course's chapter 0), the affine basis's anchor triangle (chapter 9);
 //  - optionally a cross of principal stress strokes per triangle (or per cell of a fine
 //    mesh) and a thick outline around one selected triangle.
+// A frame with no triangles (particles only) says so on the panel in place of det F and
+// has no colour bar.
 // Nothing depends on the wall clock, so the same state gives the same picture.
 //
 // Antialiasing is analytic, so it is the same on every OpenGL implementation and costs
@@ -54,6 +59,25 @@
 
 namespace invfree::render {
 
+// Points drawn over the world, above the triangles (and their edges, rings and glyphs),
+// below the selected triangle's outline and the panel: every point a dot, every segment a
+// stroke between two of the points (antialiased as the mesh's edges), all in one colour.
+struct Overlay {
+  std::vector<Vec2> points;                  // world metres
+  std::vector<std::array<int, 2>> segments;  // indices into points
+  Rgb color{0.0f, 0.0f, 1.0f};
+  // The dots' radius in metres (so that they scale with the picture), drawn at least
+  // kMinOverlayDotPixels (scaled with the frame) so that a coarse view still shows them;
+  // 0: no dots.
+  double dot_radius = 0.0;
+  double stroke_width = 1.5;  // pixels at 1280x720, scaled with the frame (at least 1)
+};
+constexpr double kMinOverlayDotPixels = 2.5;
+
+// The overlay colours: the tutorial's blue particles and springs, its red anchor triangle.
+constexpr Rgb kParticleColor{0.05f, 0.22f, 0.85f};
+constexpr Rgb kAnchorColor{0.86f, 0.06f, 0.06f};
+
 // What one frame shows, copied out of a Simulation (so a frame can be drawn while the
 // simulation goes on, e.g. on another thread).
 struct FrameState {
@@ -68,6 +92,8 @@ struct FrameState {
   // With stress glyphs asked for: each triangle's principal Cauchy stresses (larger
   // first, Pa) and the first one's unit direction; empty otherwise.
   std::vector<Vec2> principal_stress, principal_direction;
+  // Drawn over the world in this order (see Overlay).
+  std::vector<Overlay> overlays;
   double ceiling_y = 0.0;
   double time = 0.0;
   long step = 0;
@@ -79,8 +105,24 @@ struct CaptureOptions {
   bool stress_glyphs = false;  // fill principal_stress and principal_direction
 };
 // det_f: the state's det F per triangle when the caller has it already (else computed).
+// The overlays: a mesh without triangles gets its nodes as dots and its springs as
+// strokes (particle_overlay); the affine basis ([reduced] basis = "polynomial", order 1)
+// its anchor triangle (anchor_overlay), when core gives one.
 FrameState capture_frame_state(const Simulation& sim, const std::vector<double>* det_f = nullptr,
                                const CaptureOptions& capture = {});
+
+// The particles and springs of a mesh without triangles: nodes x (2N) as dots of radius
+// particle_dot_radius, the springs' node pairs as strokes.
+Overlay particle_overlay(const VecX& x, const std::vector<std::array<int, 2>>& springs,
+                         double dot_radius);
+// The dots' radius for particles at rest positions `rest` joined by `springs`: a tenth of
+// the median spring's rest length (the tutorial: 0.02 m at 0.25 m spacing), at most the
+// tutorial's 0.1 m of a lone particle (also what a particle without springs gets).
+double particle_dot_radius(const std::vector<Vec2>& rest,
+                           const std::vector<std::array<int, 2>>& springs);
+// The affine basis's anchor triangle: its three corners as red dots (a fifth of the mesh's
+// spacing, twice the tutorial's, which at n_seg 10 is 3 pixels) joined by red strokes.
+Overlay anchor_overlay(const std::array<Vec2, 3>& corners, double spacing);
 
 struct DrawOptions {
   bool edges = true;  // triangle edges (the outline is always drawn)

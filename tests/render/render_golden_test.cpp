@@ -12,15 +12,18 @@
 #include <string>
 #include <vector>
 
+#include "app/render/frame_vertices.h"
 #include "app/render/gl_api.h"
 #include "app/render/offscreen_context.h"
 #include "app/render/renderer.h"
 #include "collision/intersection_check.h"
 #include "scene/boundary.h"
+#include "scene/reduced_basis.h"
 #include "scene/scene.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 #include "tests/render/image_compare.h"
 #include "tests/test_paths.h"
 #include "triangle_fields.h"
@@ -327,6 +330,173 @@ TEST(RenderGolden, PlateHoleStressConcentration) {
   EXPECT_GT(top, 2.0 * far);
   EXPECT_GT(bottom, 2.0 * far);
   expect_golden(sim, "plate_hole_stress", colored_by(TriangleField::Stress));
+}
+
+// Overlays (renderer.h's Overlay): particles and springs of a mesh without triangles
+// (the course's chapter 0), the affine basis's anchor triangle (chapter 9).
+
+test::RgbImage render_frame(const render::FrameState& f, const render::DrawOptions& draw = {}) {
+  render::Renderer& r = renderer();
+  r.draw(f, draw);
+  std::vector<std::uint8_t> rgba;
+  r.read_pixels(&rgba);
+  return test::from_gl_pixels(rgba, r.width(), r.height());
+}
+
+std::array<int, 3> pixel(const test::RgbImage& im, Vec2 p) {
+  const size_t k = 3 * (static_cast<size_t>(std::lround(p.y())) * im.width +
+                        static_cast<size_t>(std::lround(p.x())));
+  return {im.rgb[k], im.rgb[k + 1], im.rgb[k + 2]};
+}
+
+// Within 12/255 of `c` in every channel.
+bool near_color(const std::array<int, 3>& p, Rgb c) {
+  const int want[3] = {int(std::lround(255 * c.r)), int(std::lround(255 * c.g)),
+                       int(std::lround(255 * c.b))};
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(p[k] - want[k]) > 12) return false;
+  return true;
+}
+
+// A thin antialiased stroke may cover no pixel whole: some pixel within one of `p` is at
+// least half way from the plot's background to `c` in every channel.
+bool stroked(const test::RgbImage& im, Vec2 p, Rgb c) {
+  const float bg[3] = {render::kPlotBackground.r, render::kPlotBackground.g,
+                       render::kPlotBackground.b};
+  const float want[3] = {c.r, c.g, c.b};
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const std::array<int, 3> q = pixel(im, p + Vec2(dx, dy));
+      bool half_way = true;
+      for (int k = 0; k < 3; ++k)
+        half_way = half_way &&
+                   std::abs(q[k] / 255.0f - want[k]) <= 0.5f * std::abs(bg[k] - want[k]) + 0.02f;
+      if (half_way) return true;
+    }
+  return false;
+}
+
+// A points body's simulation, made by hand until the course's chapter 0 scenes land: the
+// mass-spring square of course-2-dirichlet hanging for 40 steps, then its triangles taken
+// away, so that only its nodes and springs remain.
+Simulation hanging_particles() {
+  SceneDef s = scene("course-2-dirichlet");
+  Simulation sim = make_simulation(s);
+  run_to(sim, 40);
+  sim.scene.shape.kind = ShapeKind::Points;
+  sim.scene.shape.points = sim.mesh.rest;
+  sim.mesh.triangles.clear();
+  sim.mesh.rest_area.clear();
+  sim.mesh.rest_shape_inverse.clear();
+  return sim;
+}
+
+TEST(RenderGolden, ParticlesAndSpringsOfAMeshWithoutTriangles) {
+  const Simulation sim = hanging_particles();
+  const render::FrameState f = render::capture_frame_state(sim);
+  ASSERT_EQ(f.overlays.size(), 1u);
+  const render::Overlay& o = f.overlays[0];
+  EXPECT_EQ(o.points.size(), size_t(sim.mesh.node_count()));
+  EXPECT_EQ(o.segments.size(), sim.workspace->springs.size());
+  EXPECT_NEAR(o.dot_radius, 0.025, 1e-12);  // a tenth of the 0.25 m spacing
+  const test::RgbImage im = render_frame(f);
+  // Every particle is a blue dot, in the plot.
+  const render::Camera cam = renderer().camera(f.scene);
+  for (const Vec2& p : o.points) {
+    const Vec2 px = cam.to_pixel(p);
+    ASSERT_GT(px.x(), 0.0);
+    ASSERT_LT(px.x(), renderer().layout().plot.w);
+    EXPECT_TRUE(near_color(pixel(im, px), render::kParticleColor)) << p.transpose();
+  }
+  // The middle of a spring is stroked.
+  const auto [a, b] = o.segments.front();
+  EXPECT_TRUE(stroked(im, cam.to_pixel(0.5 * (o.points[a] + o.points[b])), render::kParticleColor));
+  expect_golden(sim, "particles_hanging");
+}
+
+TEST(RenderGolden, LoneParticleIsFramed) {
+  // One particle: a rest box of no size. The camera still frames it (kParticleReach around
+  // it), and the dot has the tutorial's 0.1 m radius.
+  render::FrameState f;
+  f.scene.name = "one particle";
+  f.scene.has_ground = false;
+  f.scene.has_ceiling = false;
+  f.scene.has_gravity = false;  // (falling freely, it gets room below: see camera.h)
+  f.scene.shape.kind = ShapeKind::Points;
+  f.scene.shape.points = {Vec2(0.0, 0.0)};
+  f.x = VecX::Zero(2);
+  f.overlays.push_back(
+      render::particle_overlay(f.x, {}, render::particle_dot_radius({Vec2(0, 0)}, {})));
+  EXPECT_EQ(f.overlays[0].dot_radius, 0.1);
+  const render::Camera cam = renderer().camera(f.scene);
+  ASSERT_TRUE(std::isfinite(cam.pixels_per_metre));
+  const Vec2 c = cam.to_pixel(Vec2(0, 0));
+  const render::PixelRect plot = renderer().layout().plot;
+  EXPECT_NEAR(c.x(), plot.x + 0.5 * plot.w, 1.0);
+  EXPECT_NEAR(c.y(), plot.y + 0.5 * plot.h, 1.0);
+  const test::RgbImage im = render_frame(f);
+  const double r = 0.1 * cam.pixels_per_metre;
+  EXPECT_GT(r, 20.0);
+  EXPECT_TRUE(near_color(pixel(im, c), render::kParticleColor));
+  EXPECT_TRUE(near_color(pixel(im, c + Vec2(r - 2.0, 0.0)), render::kParticleColor));
+  EXPECT_FALSE(near_color(pixel(im, c + Vec2(r + 2.0, 0.0)), render::kParticleColor));
+  // Under gravity, with nothing to hold it and no ground, the particle starts in the upper
+  // part of the picture, room to fall below it.
+  f.scene.has_gravity = true;
+  const Vec2 falling = renderer().camera(f.scene).to_pixel(Vec2(0, 0));
+  EXPECT_LT(falling.y(), plot.y + 0.35 * plot.h);
+  EXPECT_GT(falling.y(), plot.y + 0.1 * plot.h);
+}
+
+TEST(RenderGolden, AnchorTriangleOverTheMesh) {
+  // The affine basis's anchor triangle, drawn from a hand-made frame (core gives it once the
+  // reduced solve lands): red strokes and corner dots over the triangles and their edges,
+  // under the selected triangle's outline.
+  Simulation sim = make_simulation(scene("compress"));
+  render::FrameState f = render::capture_frame_state(sim);
+  EXPECT_TRUE(f.overlays.empty());  // a full-space scene: none
+  const std::array<Vec2, 3> corners = {Vec2(-0.4, -0.35), Vec2(0.45, -0.35), Vec2(-0.4, 0.4)};
+  f.overlays.push_back(render::anchor_overlay(corners, 0.25));
+  render::DrawOptions draw;
+  draw.selected_triangle = 0;
+  const test::RgbImage im = render_frame(f, draw);
+  const render::Camera cam = renderer().camera(f.scene);
+  for (const Vec2& p : corners)
+    EXPECT_TRUE(near_color(pixel(im, cam.to_pixel(p)), render::kAnchorColor)) << p.transpose();
+  for (int k = 0; k < 3; ++k)
+    EXPECT_TRUE(
+        stroked(im, cam.to_pixel(0.5 * (corners[k] + corners[(k + 1) % 3])), render::kAnchorColor))
+        << k;
+  const std::string message =
+      test::check_golden(im, "anchor_triangle", test::golden_dir(), test::golden_failure_dir());
+  EXPECT_TRUE(message.empty()) << message;
+  // Without the overlay the same frame has no red there.
+  f.overlays.clear();
+  const test::RgbImage plain = render_frame(f, draw);
+  EXPECT_FALSE(near_color(pixel(plain, cam.to_pixel(corners[0])), render::kAnchorColor));
+  EXPECT_EQ(plain.rgb, render_state(sim, {}, draw).rgb);
+}
+
+TEST(RenderGolden, AffineBasisDrawsItsAnchorTriangle) {
+  // course-9-affine after its landing (step 40): the anchor triangle carried by the body's
+  // affine map (core's affine_anchor_triangle), red over the mesh.
+  Simulation sim = make_simulation(scene("course-9-affine"));
+  run_to(sim, 40);
+  const render::FrameState f = render::capture_frame_state(sim);
+  ASSERT_EQ(f.overlays.size(), 1u);
+  const auto anchors = affine_anchor_triangle(sim.scene, sim.mesh, sim.x);
+  ASSERT_TRUE(anchors.has_value());
+  const render::Overlay& o = f.overlays[0];
+  ASSERT_EQ(o.points.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(o.points[k], (*anchors)[k]);
+  const test::RgbImage im = render_frame(f);
+  const render::Camera cam = renderer().camera(f.scene);
+  for (const Vec2& p : o.points)
+    EXPECT_TRUE(near_color(pixel(im, cam.to_pixel(p)), render::kAnchorColor)) << p.transpose();
+  expect_golden(sim, "course_9_affine");
+  // Other bases draw none.
+  EXPECT_TRUE(
+      render::capture_frame_state(make_simulation(scene("course-9-quadratic"))).overlays.empty());
 }
 
 TEST(RenderGolden, SameStateSamePixels) {
