@@ -235,6 +235,10 @@ int run_inspect(const InspectOptions& opt) {
 
   Simulation sim = make_simulation(*scene);
   const int count = sim.mesh.triangle_count();
+  if (count == 0)  // particles only (the course's chapter 0)
+    return fail(exit_code::kBadInput, "scene " + sim.scene.name +
+                                          " has no triangles (particles and springs only): "
+                                          "nothing to inspect");
   if (by_triangle && (opt.triangle < 0 || opt.triangle >= count))
     return fail(exit_code::kBadInput,
                 "--triangle " + std::to_string(opt.triangle) + " is out of range: the mesh has " +

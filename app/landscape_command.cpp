@@ -147,7 +147,9 @@ int run_landscape(const LandscapeOptions& opt) {
     spec.points_caption = "Dots: the " + format_for_people(double(spec.points.size())) +
                           " triangles of " + scene->name + " (" + model_label(scene->model) +
                           ") at step " + std::to_string(sim.step_count) + ", t = " + t + " s";
-    if (!scene->has_triangle_elasticity())
+    if (spec.points.empty())  // particles only (the course's chapter 0)
+      spec.points_caption = scene->name + " has no triangles (particles and springs only): no dots";
+    else if (!scene->has_triangle_elasticity())
       spec.notes.push_back(
           "A mass-spring scene: its springs have no \u03a8(F); the dots are its triangles' "
           "singular values, drawn on the landscape of its [material] model for comparison.");
@@ -169,13 +171,15 @@ int run_landscape(const LandscapeOptions& opt) {
   if (auto e = write_canvas(opt.out, *landscape_chart(spec, *format)); !e.empty())
     return fail(exit_code::kOutputFailed, e);
   std::string what = models.size() == 1 ? model_label(models[0]) : "4 models";
+  std::string dots;  // the scene's triangles, or that it has none (particles only)
+  if (!spec.points.empty())
+    dots = "; " + format_for_people(double(spec.points.size())) + " triangles at step " +
+           std::to_string(opt.step);
+  else if (scene)
+    dots = "; " + scene->name + " has no triangles (particles only)";
   std::printf("landscape: %s, mu = %s, lambda = %s%s; wrote %s\n", what.c_str(),
               format_pascal(spec.lame.mu).c_str(), format_pascal(spec.lame.lambda).c_str(),
-              spec.points.empty() ? ""
-                                  : ("; " + format_for_people(double(spec.points.size())) +
-                                     " triangles at step " + std::to_string(opt.step))
-                                        .c_str(),
-              opt.out.c_str());
+              dots.c_str(), opt.out.c_str());
   flush_standard_output();
   return exit_code::kOk;
 }

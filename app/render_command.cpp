@@ -240,10 +240,12 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
   SimulationThread producer(sim, opt.frames, opt.steps_per_frame, capture);
   render::FrameState state;
   while (!interrupted() && producer.next(&state)) {
-    const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
-    out.det_lo = out.frames == 0 ? *lo : std::min(out.det_lo, *lo);
-    out.det_hi = out.frames == 0 ? *hi : std::max(out.det_hi, *hi);
-    color_range.apply(*lo, *hi, &draw_options);
+    if (!state.det_f.empty()) {  // (particles only, the course's chapter 0: no det F)
+      const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
+      out.det_lo = out.frames == 0 ? *lo : std::min(out.det_lo, *lo);
+      out.det_hi = out.frames == 0 ? *hi : std::max(out.det_hi, *hi);
+      color_range.apply(*lo, *hi, &draw_options);
+    }
     color_range.apply_field(state, &draw_options);
     const render::Camera cam = opt.camera == "follow" ? follow.next(state, layout.plot)
                                                       : render::scene_camera(state.scene, layout);
@@ -339,12 +341,15 @@ int run_render(const RenderOptions& opt) {
   char rate_text[32], encode_text[32];
   std::snprintf(rate_text, sizeof rate_text, "%.4g", fps);
   std::snprintf(encode_text, sizeof encode_text, "%.1f s", seconds - render_seconds);
+  char det_text[64] = "no triangles";
+  if (sim.mesh.triangle_count() > 0)
+    std::snprintf(det_text, sizeof det_text, "det F in [%.4f, %.4f]", done.det_lo, done.det_hi);
   std::printf(
-      "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, det F "
-      "in [%.4f, %.4f]%s\n",
+      "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, "
+      "%s%s\n",
       sim.scene.name.c_str(), done.frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
       frame_name(std::max(done.frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time,
-      seconds, render_seconds > 0 ? done.frames / render_seconds : 0.0, done.det_lo, done.det_hi,
+      seconds, render_seconds > 0 ? done.frames / render_seconds : 0.0, det_text,
       movie.empty()
           ? ""
           : (std::string("; movie: ") + rate_text + " frames/s, " +

@@ -498,18 +498,24 @@ void stats_section(const LiveController& lc, PanelState& ps) {
   } else {
     ImGui::TextColored(kDimColor, "no step yet");
   }
-  const ImVec4 inverted_color =
-      st.inverted > 0 ? ImVec4(0.2f, 0.9f, 0.3f, 1.0f) : ImGui::GetStyleColorVec4(ImGuiCol_Text);
-  ImGui::Text("det F in [%.4f, %.4f]", st.min_det_f, st.max_det_f);
-  ImGui::SameLine();
-  ImGui::TextColored(inverted_color, "  %d inverted", st.inverted);
+  // Particles only (the course's chapter 0): no triangles, so no det F to show.
+  const bool triangles = sim.mesh.triangle_count() > 0;
+  if (triangles) {
+    const ImVec4 inverted_color =
+        st.inverted > 0 ? ImVec4(0.2f, 0.9f, 0.3f, 1.0f) : ImGui::GetStyleColorVec4(ImGuiCol_Text);
+    ImGui::Text("det F in [%.4f, %.4f]", st.min_det_f, st.max_det_f);
+    ImGui::SameLine();
+    ImGui::TextColored(inverted_color, "  %d inverted", st.inverted);
+  } else {
+    ImGui::TextColored(kDimColor, "no triangles: particles and springs, no det F");
+  }
 
   if (ImGui::BeginTabBar("plots")) {
     if (ImGui::BeginTabItem("energy")) {
       energy_plot(lc, ps);
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("min det F")) {
+    if (triangles && ImGui::BeginTabItem("min det F")) {
       const auto det = lc.min_det_history().values();
       char title[64];
       std::snprintf(title, sizeof title, "min det F, last %zu steps", det.size());

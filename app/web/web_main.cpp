@@ -341,7 +341,8 @@ extern "C" EMSCRIPTEN_KEEPALIVE double invfree_mesh_ms(int repeats) {
     for (int b = 0; b < invfree::body_count(scene); ++b) {
       const invfree::PlacedBody body = invfree::placed_body(scene, b);
       if (body.shape.kind == invfree::ShapeKind::Square ||
-          body.shape.kind == invfree::ShapeKind::MeshFile)
+          body.shape.kind == invfree::ShapeKind::MeshFile ||
+          body.shape.kind == invfree::ShapeKind::Points)  // particles: not meshed
         continue;
       const double max_edge = invfree::shape_max_edge(body.shape, body.n_seg);
       const invfree::ShapeRegion region = invfree::shape_region(body.shape, max_edge);

@@ -422,6 +422,10 @@ TEST(Inspect, BadInputExitsTwoWithOneLine) {
       {base + "--step 1 --triangle x", "--triangle"},
       {"inspect --scene nosuchscene --step 1 --triangle 0", "nosuchscene"},
       {base + "--set material.nu=0.7 --step 1 --triangle 0", "material.nu"},
+      // Particles only (the course's chapter 0): nothing to inspect, whichever way asked.
+      {"inspect --scene course-0-spring --step 1 --triangle 0",
+       "scene course-0-spring has no triangles (particles and springs only): nothing to inspect"},
+      {"inspect --scene course-0-free-fall --step 0 --at 0,0", "has no triangles"},
   };
   for (const Case& c : cases) {
     const CommandResult r = run(c.args);

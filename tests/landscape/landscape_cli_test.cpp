@@ -50,6 +50,19 @@ TEST(LandscapeCli, WritesEachFormat) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(LandscapeCli, AChartWithoutDotsForParticles) {
+  // The course's chapter 0 has no triangles: the landscape is drawn, no dots, and the
+  // caption says why.
+  const std::string dir = temp_dir("particles");
+  const std::string out = dir + "/particles.png";
+  const CommandResult r = run("--scene course-0-spring --step 5 --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("course-0-spring has no triangles"), std::string::npos) << r.out;
+  test::RgbImage image;
+  EXPECT_TRUE(test::load_png(out, &image));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(LandscapeCli, AllModelsWithAScenesTrianglesAfterSteps) {
   const std::string dir = temp_dir("scene");
   const std::string out = dir + "/all.png";

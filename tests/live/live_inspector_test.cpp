@@ -228,6 +228,45 @@ TEST(LiveInspector, PicksATriangleOfTheMeshedRing) {
   EXPECT_GT(in->analysis.J, 0.0);
 }
 
+// Particles without triangles (the course's chapter 0) in the live window: the picture
+// shows them (blue dots), every colouring, the glyphs and the landscape's window run, a
+// click on the particle finds no triangle (an empty click), and asking for a triangle
+// selects none.
+TEST(LiveInspector, ParticlesHaveNoTriangleToPick) {
+  for (const std::string name : {"course-0-spring", "course-0-free-fall"}) {
+    LiveOptions o;
+    o.scenes = {{name, *load_builtin_scene(name).scene},
+                {"compress", *load_builtin_scene("compress").scene}};
+    o.paused = true;
+    o.vsync = false;
+    o.show_landscape = true;
+    o.stress_glyphs = true;
+    std::string error;
+    auto app = LiveApp::create(o, &error);
+    ASSERT_TRUE(app) << error;
+    for (int k = 0; k < 10; ++k) ASSERT_TRUE(app->controller().step_once());
+    for (const TriangleField field :
+         {TriangleField::DetF, TriangleField::Psi, TriangleField::Stress, TriangleField::Clamped}) {
+      app->set_color_by(field);
+      Image picture;
+      app->frame(nullptr, &picture);
+      long blue = 0;
+      for (size_t i = 0; i + 3 < picture.rgba.size(); i += 4)
+        blue += picture.rgba[i + 2] > 150 && picture.rgba[i] < 80 && picture.rgba[i + 1] < 110;
+      EXPECT_GT(blue, 20) << name << " " << enum_name(kTriangleFieldNames, field);
+    }
+    const Simulation& sim = app->controller().simulation();
+    ASSERT_EQ(sim.mesh.triangle_count(), 0);
+    const int last = sim.mesh.node_count() - 1;
+    click(*app, app->to_window(sim.x.segment<2>(2 * last)));
+    EXPECT_EQ(app->inspected(), nullptr) << name;
+    EXPECT_EQ(app->empty_clicks(), 1) << name;
+    app->select_triangle(0);
+    EXPECT_EQ(app->inspected(), nullptr) << name;
+    show(*app);
+  }
+}
+
 TEST(LiveInspector, EscReleasesThenQuits) {
   auto app = open_compress(0);
   ASSERT_TRUE(app);

@@ -65,6 +65,34 @@ TEST(RenderCli, WritesFramesAndFrameZeroIsTheInitialState) {
   EXPECT_NE(frame0.rgb, frame2.rgb);  // the square moved (and the time label changed)
 }
 
+TEST(RenderCli, ParticlesWithoutTrianglesRenderInEveryColouring) {
+  // The course's chapter 0 (no triangles): frames with the particles drawn, the summary
+  // says "no triangles" (no det F of none), and every colouring, --camera follow and the
+  // glyphs run; --select-triangle has no triangle to name.
+  for (const std::string scene : {"course-0-free-fall", "course-0-spring"}) {
+    for (const std::string extra :
+         {"", " --color-by psi --stress-glyphs --camera follow --color-range frame"}) {
+      const std::string dir = fresh_dir("particles");
+      const CommandResult r = run("render --scene " + scene + " --frames 3 --steps-per-frame 10 " +
+                                  "--size 320x180 --out " + dir + extra);
+      ASSERT_EQ(r.code, 0) << scene << extra << "\n" << r.err;
+      EXPECT_NE(r.out.find("no triangles"), std::string::npos) << r.out;
+      EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+      invfree::test::RgbImage frame;
+      ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000002.png", &frame));
+      long blue = 0;  // the particles' dots (render::kParticleColor)
+      for (size_t k = 0; k + 2 < frame.rgb.size(); k += 3)
+        blue += frame.rgb[k + 2] > 150 && frame.rgb[k] < 80 && frame.rgb[k + 1] < 110;
+      EXPECT_GT(blue, 10) << scene << extra;
+    }
+  }
+  const CommandResult selected =
+      run("render --scene course-0-spring --frames 1 "
+          "--select-triangle 0 --out " +
+          fresh_dir("particles_selected"));
+  EXPECT_EQ(selected.code, 2) << selected.err;
+}
+
 TEST(RenderCli, RefusesANonEmptyDirectoryUnlessForced) {
   const std::string dir = fresh_dir("force");
   const CommandResult first = run("render --frames 1 --size 320x180 --out " + dir);
