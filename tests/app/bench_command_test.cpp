@@ -17,6 +17,7 @@ std::vector<std::string> split(const std::string& line, char sep) {
   std::vector<std::string> out;
   std::stringstream in(line);
   for (std::string item; std::getline(in, item, sep);) out.push_back(item);
+  if (!line.empty() && line.back() == sep) out.push_back("");  // an empty last cell
   return out;
 }
 
@@ -115,6 +116,34 @@ TEST(BenchCommand, BadSizesAreBadInput) {
     EXPECT_NE(r.err.find("--sizes"), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
   }
+}
+
+// A reduced scene ([reduced]) is timed against its full model on each mesh: the last two
+// columns hold the full model's median ms and Newton iterations per step, empty for a
+// scene without a basis (the test above).
+TEST(BenchCommand, AReducedSceneRunsItsFullModelToo) {
+  const std::string dir = ::testing::TempDir() + "/bench_reduced_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  const test::ProcessResult r = test::run_invfree(
+      {"bench", "--scene", "course-9-affine", "--sizes", "4,6", "--steps", "40", "--out", dir});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("x faster reduced"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("dense-ldlt-r6"), std::string::npos) << r.out;
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream csv(test::slurp(dir + "/bench.csv"));
+  for (std::string line; std::getline(csv, line);) rows.push_back(split(line, ','));
+  ASSERT_EQ(rows.size(), 3u);
+  const auto& header = rows[0];
+  const auto full = std::find(header.begin(), header.end(), "full_median_ms") - header.begin();
+  const auto newton = std::find(header.begin(), header.end(), "full_newton_per_step") - header.begin();
+  ASSERT_LT(full, static_cast<long>(header.size()));
+  ASSERT_LT(newton, static_cast<long>(header.size()));
+  for (size_t k = 1; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), header.size());
+    EXPECT_GT(std::stod(rows[k][full]), 0.0);
+    EXPECT_GE(std::stod(rows[k][newton]), 1.0);
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
