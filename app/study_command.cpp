@@ -3,7 +3,9 @@
 // error against h with the fitted convergence slope) and DIR/study-sweeps.png (Newton
 // tolerance and mesh resolution sweeps), and the error against the exact answer: every model
 // family's static cantilever against beam theory (app/verify/exact_study.h), a panel of
-// study.png and DIR/study-exact.csv. Progress goes to stderr, a summary to stdout.
+// study.png and DIR/study-exact.csv; and the course's chapter 9: the reduced bases' error to
+// the full model against ms per step (app/study/reduced_study.h), a panel of study.png and
+// DIR/study-reduced.csv. Progress goes to stderr, a summary to stdout.
 #include <cstdio>
 
 #include "app/command.h"
@@ -13,6 +15,7 @@
 #include "app/output_files.h"
 #include "app/plot/chart.h"
 #include "app/scene_options.h"
+#include "app/study/reduced_study.h"
 #include "app/study/study.h"
 #include "app/study/study_chart.h"
 #include "app/sweep_command.h"
@@ -33,10 +36,11 @@ int run_study_command(const StudyCommandOptions& opt) {
   if (!scene) return fail(exit_code::kBadInput, error);
   const std::string csv_path = opt.sweep.out + "/study.csv",
                     exact_path = opt.sweep.out + "/study-exact.csv",
+                    reduced_path = opt.sweep.out + "/study-reduced.csv",
                     ext = chart_extension(opt.sweep.format),
                     png_path = opt.sweep.out + "/study." + ext,
                     sweeps_path = opt.sweep.out + "/study-sweeps." + ext;
-  if (auto e = check_output_files({csv_path, exact_path, png_path, sweeps_path},
+  if (auto e = check_output_files({csv_path, exact_path, reduced_path, png_path, sweeps_path},
                                   opt.scene.input_files(), opt.sweep.force))
     return fail(e.exit_code, e.message);
 
@@ -45,10 +49,14 @@ int run_study_command(const StudyCommandOptions& opt) {
   if (result.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
   const ExactStudy exact = run_exact_study(sweep);
   if (exact.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
+  const ReducedStudy reduced = run_reduced_study(sweep);
+  if (reduced.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
   std::vector<ChartSpec> panels = study_panels(result);
   panels.push_back(exact_study_panel(exact));
+  panels.push_back(reduced_study_panel(reduced));
   error = write_file_atomically(csv_path, study_csv(result));
   if (error.empty()) error = write_file_atomically(exact_path, exact_study_csv(exact));
+  if (error.empty()) error = write_file_atomically(reduced_path, reduced_study_csv(reduced));
   if (error.empty()) error = write_canvas(png_path, *chart_canvas(panels, opt.sweep.format));
   if (error.empty())
     error = write_canvas(sweeps_path, *chart_canvas(sweeps_panels(result), opt.sweep.format));
@@ -58,10 +66,11 @@ int run_study_command(const StudyCommandOptions& opt) {
   for (const StudyRow& r : result.rows) failed += r.failure != "ok";
   std::printf(
       "study of %s: %zu runs (%d failed), implicit Euler error slope %.2f, %.1f s in the solver; "
-      "%zu static solves against the exact answer; wrote %s, %s, %s, %s\n",
+      "%zu static solves against the exact answer; %zu runs of reduced bases; wrote %s, %s, "
+      "%s, %s, %s\n",
       scene->name.c_str(), result.rows.size(), failed, result.lecture_slope, result.total_wall_s,
-      exact.rows.size(), csv_path.c_str(), exact_path.c_str(), png_path.c_str(),
-      sweeps_path.c_str());
+      exact.rows.size(), reduced.rows.size(), csv_path.c_str(), exact_path.c_str(),
+      reduced_path.c_str(), png_path.c_str(), sweeps_path.c_str());
   for (const std::string& f : result.reference_failures)
     std::fprintf(stderr, "invfree: warning: %s\n", f.c_str());
   return exit_code::kOk;
@@ -73,14 +82,16 @@ void register_study_command(CLI::App& app, int& exit_code) {
   auto [cmd, opt] = add_command<StudyCommandOptions>(
       app, exit_code, "study",
       "speed against accuracy: sweep h, Newton tol and mesh resolution for every method, and "
-      "every model's static cantilever against the exact answer; write study.csv, "
-      "study-exact.csv, study.png, study-sweeps.png",
+      "every model's static cantilever against the exact answer, and the reduced bases against "
+      "the full model; write study.csv, study-exact.csv, study-reduced.csv, study.png, "
+      "study-sweeps.png",
       run_study_command);
   opt.scene.add_to(cmd);
   add_sweep_options(cmd, opt.sweep,
-                    "directory for study.csv, study-exact.csv, study.png and study-sweeps.png "
-                    "(or .svg, .pdf)",
-                    "fewer h, tolerances and meshes, and a coarser reference (docs/study.md)");
+                    "directory for study.csv, study-exact.csv, study-reduced.csv, study.png and "
+                    "study-sweeps.png (or .svg, .pdf)",
+                    "fewer h, tolerances and meshes, a coarser reference, and fewer reduced bases "
+                    "(docs/study.md)");
 }
 
 }  // namespace invfree

@@ -130,6 +130,26 @@ TEST(StudyCommand, QuickStudyWritesTheTableAndTheCharts) {
   // Both linear solvers give the same answer to the model.
   for (size_t k = 0; k < 3; ++k)
     EXPECT_NEAR(errors["neo-hookean,ldlt"][k], errors["neo-hookean,cholmod"][k], 1e-6);
+
+  // The reduced bases (chapter 9) against the full model: quick runs n_seg 10, the full
+  // model first (error 0), then affine, quadratic, cubic and modal 6, 12, 20, all ok
+  // (their errors are checked in reduced_study_test.cpp).
+  const auto reduced = read_csv(dir / "study-reduced.csv");
+  ASSERT_EQ(reduced.size(), 1u + 7u);
+  EXPECT_EQ(reduced[0], (std::vector<std::string>{"basis", "order_or_modes", "unknowns", "n_seg",
+                                                  "ms_per_step", "max_error_m", "newton_per_step",
+                                                  "failure"}));
+  EXPECT_EQ(reduced[1][0], "full");
+  EXPECT_EQ(std::stod(reduced[1][5]), 0.0);
+  for (size_t i = 1; i < reduced.size(); ++i) {
+    ASSERT_EQ(reduced[i].size(), 8u) << i;
+    EXPECT_EQ(reduced[i][7], "ok") << i;
+    EXPECT_GT(std::stod(reduced[i][4]), 0.0) << i;
+    if (i > 1) {
+      EXPECT_GT(std::stod(reduced[i][5]), 0.0) << i;
+    }
+  }
+  EXPECT_NE(r.out.find("study-reduced.csv"), std::string::npos) << r.out;
   fs::remove_all(dir);
 }
 
