@@ -17,9 +17,9 @@ namespace invfree {
 using SparseMatrixD = Eigen::SparseMatrix<double>;
 
 struct EigenPairs {
-  VecX values;           // ascending
+  VecX values;              // ascending
   Eigen::MatrixXd vectors;  // one column per value; M-orthonormal (orthonormal without M)
-  std::string error;     // "" on success, otherwise why not (values and vectors empty)
+  std::string error;        // "" on success, otherwise why not (values and vectors empty)
 };
 
 // `count` pairs (1 <= count < K.rows()); K and M symmetric (both triangles stored), M

@@ -15,7 +15,9 @@ namespace invfree {
 
 namespace {
 
-int monomial_count(int order) { return (order + 1) * (order + 2) / 2; }
+int monomial_count(int order) {
+  return (order + 1) * (order + 2) / 2;
+}
 
 // The monomials X^a Y^b, a + b <= order, by degree and then falling powers of X (the
 // tutorial's order: 1, X, Y, X^2, XY, Y^2, X^3, X^2 Y, X Y^2, Y^3).
@@ -54,11 +56,15 @@ double modal_shift(const Eigen::SparseMatrix<double>& H) {
 }
 
 // Equal to solver precision: the pair's gap is below 1e-8 of the spectrum's scale.
-bool degenerate(double a, double b, double scale) { return std::abs(b - a) <= 1e-8 * scale; }
+bool degenerate(double a, double b, double scale) {
+  return std::abs(b - a) <= 1e-8 * scale;
+}
 
 }  // namespace
 
-int polynomial_basis_size(int order, int bodies) { return bodies * 2 * monomial_count(order); }
+int polynomial_basis_size(int order, int bodies) {
+  return bodies * 2 * monomial_count(order);
+}
 
 Eigen::SparseMatrix<double> rest_elastic_hessian(const SceneDef& scene, const Mesh& mesh) {
   std::vector<Eigen::Triplet<double>> entries;
@@ -88,7 +94,8 @@ ReducedBasisBuild build_reduced_basis(const SceneDef& scene, const Mesh& mesh) {
     case ReducedBasis::Full:
       return out;
     case ReducedBasis::Polynomial: {
-      const int r = polynomial_basis_size(scene.reduced_order, static_cast<int>(mesh.body_begin.size()));
+      const int r =
+          polynomial_basis_size(scene.reduced_order, static_cast<int>(mesh.body_begin.size()));
       if (r > dofs) {
         out.error = "reduced.order: the order-" + std::to_string(scene.reduced_order) +
                     " basis has " + std::to_string(r) + " columns, more than the mesh's " +
@@ -112,10 +119,12 @@ ReducedBasisBuild build_reduced_basis(const SceneDef& scene, const Mesh& mesh) {
         out.error = "reduced.modes: " + pairs.error;
         return out;
       }
-      const double scale = std::max(std::abs(pairs.values[count]), H.diagonal().cwiseAbs().maxCoeff());
+      const double scale =
+          std::max(std::abs(pairs.values[count]), H.diagonal().cwiseAbs().maxCoeff());
       if (degenerate(pairs.values[count - 1], pairs.values[count], scale)) {
         int below = count - 1;
-        while (below > 0 && degenerate(pairs.values[below - 1], pairs.values[count - 1], scale)) --below;
+        while (below > 0 && degenerate(pairs.values[below - 1], pairs.values[count - 1], scale))
+          --below;
         char values[96];
         std::snprintf(values, sizeof values, "%.6g and %.6g", pairs.values[count - 1],
                       pairs.values[count]);
@@ -138,9 +147,12 @@ std::optional<SceneProblem> reduced_basis_problem(const SceneDef& s, const Mesh&
   if (s.reduced_basis == ReducedBasis::Full) return std::nullopt;
   const char* why = nullptr;
   std::string cause;
-  if (s.has_ceiling) why = "a reduced basis has no ceiling unknown: remove [ceiling]", cause = "ceiling.enabled";
-  else if (s.has_fixed) why = "a reduced basis cannot hold nodes fixed: remove [fixed]", cause = "fixed.corners";
-  else if (s.is_static()) why = "a reduced basis runs the dynamic integrator only", cause = "solver.integrator";
+  if (s.has_ceiling)
+    why = "a reduced basis has no ceiling unknown: remove [ceiling]", cause = "ceiling.enabled";
+  else if (s.has_fixed)
+    why = "a reduced basis cannot hold nodes fixed: remove [fixed]", cause = "fixed.corners";
+  else if (s.is_static())
+    why = "a reduced basis runs the dynamic integrator only", cause = "solver.integrator";
   else if (s.integrator == Integrator::SymplecticEuler)
     why = "symplectic Euler has no Newton step to reduce", cause = "solver.integrator";
   else if (s.linear_solver != LinearSolverKind::Auto)
@@ -153,13 +165,14 @@ std::optional<SceneProblem> reduced_basis_problem(const SceneDef& s, const Mesh&
   const ReducedBasisBuild build = build_reduced_basis(s, mesh);
   if (!build.error.empty()) {
     const auto colon = build.error.find(": ");
-    return SceneProblem{build.error.substr(0, colon), build.error.substr(colon + 2), {"reduced.basis"}};
+    return SceneProblem{
+        build.error.substr(0, colon), build.error.substr(colon + 2), {"reduced.basis"}};
   }
   return std::nullopt;
 }
 
 std::optional<std::array<Vec2, 3>> affine_anchor_triangle(const SceneDef& scene, const Mesh& mesh,
-                                                           const VecX& x) {
+                                                          const VecX& x) {
   if (scene.reduced_basis != ReducedBasis::Polynomial || scene.reduced_order != 1 ||
       mesh.body_begin.size() != 1 || mesh.node_count() < 3)
     return std::nullopt;

@@ -19,12 +19,11 @@
 // the line search, the filters and the invariants stay in full space.
 #pragma once
 
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <array>
 #include <optional>
 #include <string>
-
-#include <Eigen/Dense>
-#include <Eigen/SparseCore>
 
 #include "scene/mesh.h"
 #include "scene/scene.h"
@@ -55,6 +54,6 @@ std::optional<SceneProblem> reduced_basis_problem(const SceneDef& scene, const M
 // carried by the affine map that best fits positions x (least squares over the nodes).
 // nullopt unless the scene's basis is polynomial of order 1 with one body.
 std::optional<std::array<Vec2, 3>> affine_anchor_triangle(const SceneDef& scene, const Mesh& mesh,
-                                                           const VecX& x);
+                                                          const VecX& x);
 
 }  // namespace invfree

@@ -116,6 +116,27 @@ TEST(Cli, StaticScenesAndTheirBadLoads) {
   }
 }
 
+// [reduced]: a modal cut inside a degenerate pair (the square's modes 5 and 6), a cut inside
+// the three rigid modes, a polynomial order above 3 and a basis with a ceiling are one line
+// each, exit 2; a valid basis runs.
+TEST(Cli, ReducedBasesAndTheirBadCounts) {
+  const CommandResult ok = run("simulate --steps 3 --scene course-9-modal --set reduced.modes=6");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  const std::pair<const char*, const char*> bad[] = {
+      {"--scene course-9-modal --set reduced.modes=5",
+       "reduced.modes: 5 splits a degenerate group of eigenvalues (modes 5 and 6: "},
+      {"--scene course-9-modal --set reduced.modes=2", "use more than 2"},
+      {"--scene course-9-cubic --set reduced.order=4", "reduced.order: must be between 1 and 3"},
+      {"--scene course-9-modal --set reduced.modes=500", "reduced.modes: 500 modes of a mesh with 242 unknowns"},
+      {"--scene course-9-affine --set ceiling.enabled=true", "a reduced basis has no ceiling"}};
+  for (const auto& [args, expected] : bad) {
+    const CommandResult r = run(std::string("simulate --steps 2 ") + args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
 TEST(Cli, BadInputExitsTwoWithOneLine) {
   const std::string dir = ::testing::TempDir();
   { std::ofstream(dir + "/bad_nu.toml") << "[material]\nE = 1e5\nnu = 0.7\n"; }

@@ -8,11 +8,11 @@
 #include <cmath>
 
 #include "scene/initial_state.h"
-#include "solver/step_workspace.h"
 #include "scene/reduced_basis.h"
 #include "scene/scene_mesh.h"
 #include "scene_io/builtin_scenes.h"
 #include "simulation.h"
+#include "solver/step_workspace.h"
 
 namespace invfree {
 namespace {
@@ -144,7 +144,7 @@ TEST(ReducedRun, StaysInTheSubspaceAndTouchesTheGround) {
       for (int i = 0; i < sim.mesh.node_count(); ++i) lowest = std::min(lowest, sim.x[2 * i + 1]);
     }
     EXPECT_LT(off_span(B, sim.x - x0), 1e-10) << name;
-    EXPECT_LT(lowest, -0.98) << name;  // it fell to the ground (y = -1) ...
+    EXPECT_LT(lowest, -0.98) << name;            // it fell to the ground (y = -1) ...
     EXPECT_GT(min_plane_gap(sim), 0.0) << name;  // ... and stays above it
   }
 }
@@ -187,7 +187,8 @@ TEST(ReducedRun, TheIdentityBasisTakesTheFullModelsSteps) {
   s.n_seg = 4;
   s.tol = 1e-8;
   Simulation full = make_simulation(s), reduced = make_simulation(s);
-  reduced.workspace->newton.reduced.basis = Eigen::MatrixXd::Identity(reduced.x.size(), reduced.x.size());
+  reduced.workspace->newton.reduced.basis =
+      Eigen::MatrixXd::Identity(reduced.x.size(), reduced.x.size());
   for (int k = 0; k < 80; ++k) {
     const StepReport a = step(full), b = step(reduced);
     ASSERT_EQ(a.status, StepStatus::Ok);
