@@ -7,7 +7,7 @@ on a triangle inspects it (issue 26: the selected triangle's values, its outline
 inspector's golden, the release on empty space, the values against `invfree inspect`),
 and a shape scene runs (issue 27: `ring`, meshed by CGAL in the page; its first frame's
 picture matches its golden, the n_seg slider and ?n_seg= re-mesh it in the browser, and it
-drops and deforms).
+drops and deforms), and the course's particles and anchor triangle are drawn (issue 29).
 
 Usage: web_page_test.py PAGE_DIR GOLDEN_DIR OUT_DIR [INVFREE]
   PAGE_DIR    the built page (build/web: index.html, index.js, index.wasm)
@@ -543,6 +543,47 @@ def test_ring(driver, url, golden_dir, out_dir):
           f"{later['steps']}, min det F {later['min_det_f']:.4f}, {later['fps']:.1f} frames/s")
 
 
+def count_pixels(picture, box, test):
+    """How many pixels of `picture` inside `box` (left, top, right, bottom) pass test(r, g, b)."""
+    return sum(1 for p in picture.crop(box).getdata() if test(*p))
+
+
+def test_particles(driver, url):
+    # Issue 29: chapter 0's particles (a mesh without triangles) run in the page, drawn as
+    # blue dots, with nothing to inspect; chapter 9's affine basis draws its red anchor
+    # triangle. The picture between the panel and the det F panel (its colour bar is red).
+    for scene in ("course-0-spring", "course-0-free-fall"):
+        start = load(driver, url + f"?scene={scene}")
+        if start["scene"] != scene:
+            fail(f"?scene={scene} shows {start['scene']!r} (note: {start['note']!r})")
+        if start["triangles"] != 0:
+            fail(f"{scene} has {start['triangles']} triangles")
+        later = pd.wait_for(driver, lambda s: s["steps"] >= start["steps"] + 20,
+                            f"{scene}: 20 more steps", timeout=120)
+        check_no_console_error(driver, scene)
+        if not later["min_det_f"] == later["min_det_f"]:  # NaN
+            fail(f"{scene}: min det F is {later['min_det_f']}")
+        panel_right = int(later["widgets"]["n_seg"][2]) + 80
+        box = (panel_right, 0, WIDTH - 310, HEIGHT)
+        blue = count_pixels(screenshot(driver), box, lambda r, g, b: b > 150 and r < 80 and g < 110)
+        if blue < 20:
+            fail(f"{scene}: {blue} blue pixels of particles in {box}")
+        click(driver, (box[0] + box[2]) / 2, HEIGHT / 2)
+        settled = settle(driver, f"{scene}: a click on the picture")
+        check_no_console_error(driver, f"{scene}, a click")
+        if settled["selected"] is not None:
+            fail(f"{scene}: a click selected {settled['selected']} in a mesh without triangles")
+        print(f"{scene}: {later['steps']} steps, {blue} particle pixels, a click selects nothing")
+    affine = load(driver, url + "?scene=course-9-affine&paused=1")
+    check_no_console_error(driver, "course-9-affine")
+    panel_right = int(affine["widgets"]["n_seg"][2]) + 80
+    box = (panel_right, 0, WIDTH - 310, HEIGHT)
+    red = count_pixels(screenshot(driver), box, lambda r, g, b: r > 180 and g < 70 and b < 70)
+    if red < 50:
+        fail(f"course-9-affine: {red} red pixels of the anchor triangle in {box}")
+    print(f"course-9-affine: {red} anchor-triangle pixels")
+
+
 def main():
     if len(sys.argv) not in (4, 5):
         print(__doc__)
@@ -564,7 +605,8 @@ def main():
              ("screenshot download", lambda: test_screenshot_download(driver, server.url, out_dir)),
              ("touch tap", lambda: test_touch_tap(driver, server.url)),
              ("picking", lambda: test_picking(driver, server.url, golden_dir, out_dir, invfree)),
-             ("ring", lambda: test_ring(driver, server.url, golden_dir, out_dir)))
+             ("ring", lambda: test_ring(driver, server.url, golden_dir, out_dir)),
+             ("particles", lambda: test_particles(driver, server.url)))
     only = [n for n in os.environ.get("INVFREE_WEB_TESTS", "").split(",") if n]
     if only:
         tests = tuple(t for t in tests if t[0] in only)
