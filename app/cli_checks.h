@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <regex>
 #include <string>
 
 namespace invfree {
@@ -33,6 +34,19 @@ inline CLI::Validator finite_range(double lo, double hi) {
         return std::string();
       },
       "FLOAT in " + range);
+}
+
+// `--size WIDTHxHEIGHT` of an offscreen picture ("1280x720", each side 64..8192): "" with
+// the size set, or the one-line error.
+inline std::string parse_frame_size(const std::string& text, int* width, int* height) {
+  static const std::regex pattern("([0-9]{1,5})[xX]([0-9]{1,5})");
+  std::smatch m;
+  if (std::regex_match(text, m, pattern)) {
+    *width = std::stoi(m[1]);
+    *height = std::stoi(m[2]);
+    if (*width >= 64 && *height >= 64 && *width <= 8192 && *height <= 8192) return "";
+  }
+  return "--size: expected WIDTHxHEIGHT with each in 64..8192, got \"" + text + "\"";
 }
 
 }  // namespace invfree

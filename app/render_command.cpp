@@ -85,16 +85,6 @@ int lecture_steps_per_frame(double h) {
       std::clamp(std::round(1.0 / (kLectureFps * h)), 1.0, double(kMaxStepsPerFrame)));
 }
 
-// "1280x720" -> (1280, 720); false when malformed or outside 64..8192.
-bool parse_size(const std::string& text, int* width, int* height) {
-  static const std::regex pattern("([0-9]{1,5})[xX]([0-9]{1,5})");
-  std::smatch m;
-  if (!std::regex_match(text, m, pattern)) return false;
-  *width = std::stoi(m[1]);
-  *height = std::stoi(m[2]);
-  return *width >= 64 && *height >= 64 && *width <= 8192 && *height <= 8192;
-}
-
 std::string frame_name(int i) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "frame_%06d.png", i);
@@ -270,9 +260,8 @@ int run_render(const RenderOptions& opt) {
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
   int width = 0, height = 0;
-  if (!parse_size(opt.size, &width, &height))
-    return fail(exit_code::kBadInput,
-                "--size: expected WIDTHxHEIGHT with each in 64..8192, got \"" + opt.size + "\"");
+  if (auto e = parse_frame_size(opt.size, &width, &height); !e.empty())
+    return fail(exit_code::kBadInput, e);
   std::string ffmpeg;
   const bool movie_wanted = opt.mp4 || opt.gif;
   const char* movie_flag = opt.mp4 ? "--mp4" : "--gif";

@@ -24,6 +24,7 @@
 #include "app/command.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/format_number.h"
 #include "app/interrupt.h"
 #include "app/movie.h"
 #include "app/output_files.h"
@@ -53,21 +54,6 @@ struct ModesOptions {
 // The movie: each mode for two periods at 30 frames per period, played at 30 frames/s.
 constexpr int kFramesPerPeriod = 30, kPeriodsPerMode = 2;
 constexpr double kMovieFps = 30.0;
-
-bool parse_size(const std::string& text, int* width, int* height) {
-  static const std::regex pattern("([0-9]{1,5})[xX]([0-9]{1,5})");
-  std::smatch m;
-  if (!std::regex_match(text, m, pattern)) return false;
-  *width = std::stoi(m[1]);
-  *height = std::stoi(m[2]);
-  return *width >= 64 && *height >= 64 && *width <= 8192 && *height <= 8192;
-}
-
-std::string format(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
 
 // "mode_01.png": at least two digits, as many as the count needs.
 std::string mode_file(int mode, int count) {
@@ -179,9 +165,8 @@ int run_modes(const ModesOptions& opt) {
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
   int width = 0, height = 0;
-  if (!parse_size(opt.size, &width, &height))
-    return fail(exit_code::kBadInput,
-                "--size: expected WIDTHxHEIGHT with each in 64..8192, got \"" + opt.size + "\"");
+  if (auto e = parse_frame_size(opt.size, &width, &height); !e.empty())
+    return fail(exit_code::kBadInput, e);
   const ModalElement element = *enum_from_name(kModalElementNames, opt.element);
   const ModalModel model = scene_modal_model(*scene, element, &error);
   if (!error.empty()) return fail(exit_code::kBadInput, scene->name + ": " + error);
@@ -298,8 +283,8 @@ int run_modes(const ModesOptions& opt) {
       "%s .. %s%s\n",
       scene->name.c_str(), opt.count, opt.element.c_str(), free,
       rigid ? (", " + std::to_string(rigid) + " rigid (eigenvalue about 0)").c_str() : "",
-      format("%.4g", pictures.frequency.front()).c_str(),
-      format("%.4g", pictures.frequency.back()).c_str(), csv_path.c_str(),
+      format_number(pictures.frequency.front(), "%.4g").c_str(),
+      format_number(pictures.frequency.back(), "%.4g").c_str(), csv_path.c_str(),
       (opt.out + "/" + mode_file(1, opt.count)).c_str(), mode_file(opt.count, opt.count).c_str(),
       movie.empty() ? "" : (", " + movie).c_str());
   return exit_code::kOk;

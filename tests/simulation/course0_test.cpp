@@ -20,31 +20,10 @@
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
 #include "simulation.h"
-#include "tests/test_paths.h"
+#include "tests/simulation/course_reference.h"
 
 namespace invfree {
 namespace {
-
-struct Sample {
-  long step = 0;
-  std::vector<double> x;
-};
-
-std::vector<Sample> read_reference(const std::string& scene) {
-  std::ifstream in(std::string(::invfree::test::source_dir()) + "/tests/data/course/" + scene +
-                   ".txt");
-  std::vector<Sample> samples;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    Sample s;
-    fields >> s.step;
-    for (double v; fields >> v;) s.x.push_back(v);
-    samples.push_back(std::move(s));
-  }
-  return samples;
-}
 
 SceneDef course_scene(const std::string& name) {
   SceneLoad load = load_builtin_scene(name);
@@ -53,11 +32,11 @@ SceneDef course_scene(const std::string& name) {
 }
 
 // The largest |x - reference| over every sample, stepping `scene` alongside.
-double max_difference(const SceneDef& scene, const std::vector<Sample>& reference) {
+double max_difference(const SceneDef& scene, const std::vector<test::CourseSample>& reference) {
   Simulation sim = make_simulation(scene);
   EXPECT_EQ(sim.x.size(), static_cast<long>(reference.at(0).x.size()));
   double worst = 0.0;
-  for (const Sample& sample : reference) {
+  for (const test::CourseSample& sample : reference) {
     while (sim.step_count < sample.step) {
       const StepReport r = step(sim);
       EXPECT_EQ(r.status, StepStatus::Ok)
@@ -74,12 +53,12 @@ class CourseZero : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(CourseZero, FollowsThePythonDemoToAMicrometre) {
   const std::string name = GetParam();
-  const auto reference = read_reference(name);
+  const auto reference = test::read_course_reference(name);
   // The free fall to the demo's stop (steps 0..45), the others 200 steps.
   ASSERT_EQ(reference.size(), name == "course-0-free-fall" ? 46u : 21u);
   EXPECT_EQ(reference.back().step, name == "course-0-free-fall" ? 45 : 200);
   double moved = 0.0;
-  for (const Sample& s : reference)
+  for (const test::CourseSample& s : reference)
     for (size_t k = 0; k < s.x.size(); ++k)
       moved = std::max(moved, std::abs(s.x[k] - reference[0].x[k]));
   EXPECT_GT(moved, 0.05) << name << ": the reference hardly moves";
@@ -103,7 +82,7 @@ INSTANTIATE_TEST_SUITE_P(Course, CourseZero,
 // simulator2.py adds h g inside its spring loop: a node gets g once per spring it ends.
 // [gravity] per_spring = true reproduces it; gravity once per node differs by up to 1.08 m.
 TEST(CourseZero, PerSpringGravityIsWhatMatchesSimulator2) {
-  const auto reference = read_reference("course-0-mass-spring");
+  const auto reference = test::read_course_reference("course-0-mass-spring");
   SceneDef scene = course_scene("course-0-mass-spring");
   ASSERT_TRUE(scene.gravity_per_spring);
   EXPECT_LE(max_difference(scene, reference), 1e-6);
@@ -143,7 +122,7 @@ TEST(CourseZero, ParticlesRunUnderImplicitEulerToo) {
   SceneDef fall = course_scene("course-0-free-fall");
   fall.integrator = Integrator::ImplicitEuler;
   fall.tol = 1e-9;
-  EXPECT_LE(max_difference(fall, read_reference("course-0-free-fall")), 1e-9);
+  EXPECT_LE(max_difference(fall, test::read_course_reference("course-0-free-fall")), 1e-9);
   SceneDef spring = course_scene("course-0-spring");
   spring.integrator = Integrator::ImplicitEuler;
   spring.tol = 1e-6;

@@ -21,30 +21,10 @@
 
 #include "scene_io/builtin_scenes.h"
 #include "simulation.h"
-#include "tests/test_paths.h"
+#include "tests/simulation/course_reference.h"
 
 namespace invfree {
 namespace {
-
-struct Sample {
-  long step = 0;
-  std::vector<double> x;
-};
-
-std::vector<Sample> read_reference(const std::string& scene) {
-  std::ifstream in(std::string(::invfree::test::source_dir()) + "/tests/data/course/" + scene + ".txt");
-  std::vector<Sample> samples;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    Sample s;
-    fields >> s.step;
-    for (double v; fields >> v;) s.x.push_back(v);
-    samples.push_back(std::move(s));
-  }
-  return samples;
-}
 
 struct CourseCase {
   const char* scene;
@@ -56,7 +36,7 @@ class CourseScene : public ::testing::TestWithParam<CourseCase> {};
 TEST_P(CourseScene, FollowsThePythonDemo) {
   const std::string name = GetParam().scene;
   const double tolerance = GetParam().tolerance;
-  const auto reference = read_reference(name);
+  const auto reference = test::read_course_reference(name);
   ASSERT_EQ(reference.size(), 21u) << "tests/data/course/" << name << ".txt";
   SceneLoad load = load_builtin_scene(name);
   ASSERT_TRUE(load.scene) << load.error;
@@ -72,7 +52,7 @@ TEST_P(CourseScene, FollowsThePythonDemo) {
         static_cast<long>(std::ceil(
             (scene.ceiling_y - scene.ceiling_stop) / (-scene.ceiling_velocity * scene.h) - 1e-9)));
   double worst = 0.0, moved = 0.0;
-  for (const Sample& sample : reference) {
+  for (const test::CourseSample& sample : reference) {
     if (sample.step > last_step) break;
     while (sim.step_count < sample.step) {
       const StepReport r = step(sim);
