@@ -43,7 +43,7 @@ namespace {
 struct ModesOptions {
   SceneOptions scene;
   int count = 8;
-  std::string element = "triangle";
+  std::string element;  // "": the scene's [modes] element
   std::string out = "modes";
   std::string size = "960x720";
   double scale = 0.15;
@@ -167,14 +167,17 @@ int run_modes(const ModesOptions& opt) {
   int width = 0, height = 0;
   if (auto e = parse_frame_size(opt.size, &width, &height); !e.empty())
     return fail(exit_code::kBadInput, e);
-  const ModalElement element = *enum_from_name(kModalElementNames, opt.element);
+  const ModalElement element = opt.element.empty()
+                                   ? scene->modes_element
+                                   : *enum_from_name(kModalElementNames, opt.element);
+  const std::string element_name = enum_name(kModalElementNames, element);
   const ModalModel model = scene_modal_model(*scene, element, &error);
   if (!error.empty()) return fail(exit_code::kBadInput, scene->name + ": " + error);
   const int free = model.free_dof_count();
   if (opt.count >= free)
     return fail(exit_code::kBadInput,
                 "--count " + std::to_string(opt.count) + ": " + scene->name + " has " +
-                    std::to_string(free) + " free degrees of freedom (" + opt.element +
+                    std::to_string(free) + " free degrees of freedom (" + element_name +
                     " elements, [fixed] ones eliminated); --count must be 1 to " +
                     std::to_string(free - 1));
   std::string ffmpeg;
@@ -281,7 +284,7 @@ int run_modes(const ModesOptions& opt) {
   std::printf(
       "%s: %d modes (%s elements, %d free degrees of freedom%s), %s .. %s Hz; wrote %s, "
       "%s .. %s%s\n",
-      scene->name.c_str(), opt.count, opt.element.c_str(), free,
+      scene->name.c_str(), opt.count, element_name.c_str(), free,
       rigid ? (", " + std::to_string(rigid) + " rigid (eigenvalue about 0)").c_str() : "",
       format_number(pictures.frequency.front(), "%.4g").c_str(),
       format_number(pictures.frequency.back(), "%.4g").c_str(), csv_path.c_str(),
@@ -310,8 +313,8 @@ void register_modes_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--element", opt.element,
                   "triangle: linear triangles on the scene's own mesh (any shape); quad: bilinear "
                   "quads (2x2 Gauss, as linear.py) from the mesh's triangle pairs, which must "
-                  "form a structured grid (the square's, a grid mesh file)")
-      ->capture_default_str()
+                  "form a structured grid (the square's, a grid mesh file); default: the "
+                  "scene's [modes] element (triangle unless it says)")
       ->check(CLI::IsMember(elements));
   add_output_directory_option(cmd, opt.out,
                               "output directory for modes.csv, mode_01.png ... and modes.mp4 "

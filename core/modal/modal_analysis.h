@@ -34,9 +34,7 @@
 
 namespace invfree {
 
-enum class ModalElement { Triangle, Quad };
-inline constexpr EnumName<ModalElement> kModalElementNames[] = {
-    {ModalElement::Triangle, "triangle"}, {ModalElement::Quad, "quad"}};
+// ModalElement and its names: scene/scene.h ([modes] element).
 
 // What the analysis discretises: rest nodes, elements (triangles or counter-clockwise
 // quads), each element's Lame parameters, the density and the held degrees of freedom

@@ -93,6 +93,13 @@ inline constexpr EnumName<ReducedBasis> kReducedBasisNames[] = {
     {ReducedBasis::Full, "full"}, {ReducedBasis::Polynomial, "polynomial"},
     {ReducedBasis::Modal, "modal"}};
 
+// [modes] element: the elements of `invfree modes`' linear modal analysis
+// (modal/modal_analysis.h): linear triangles on the scene's own mesh, or bilinear quads
+// (2 x 2 Gauss, as the course's linear.py) from the mesh's triangle pairs.
+enum class ModalElement { Triangle, Quad };
+inline constexpr EnumName<ModalElement> kModalElementNames[] = {
+    {ModalElement::Triangle, "triangle"}, {ModalElement::Quad, "quad"}};
+
 // [mesh] mass (scene/mesh.h's MassMode), as a scene file spells it.
 inline constexpr EnumName<MassMode> kMassModeNames[] = {{MassMode::Uniform, "uniform"},
                                                         {MassMode::Lumped, "lumped"}};
@@ -216,6 +223,8 @@ struct SceneDef {
   ReducedBasis reduced_basis = ReducedBasis::Full;
   int reduced_order = 1;
   int reduced_modes = 6;
+  // [modes] element: what `invfree modes` discretises (its --element overrides).
+  ModalElement modes_element = ModalElement::Triangle;
   // [[body]]: the scene's bodies, in node order. Empty: one body, the [mesh] square at the
   // origin (every scene file without [[body]] tables).
   std::vector<BodyDef> bodies;

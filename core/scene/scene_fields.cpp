@@ -218,6 +218,7 @@ constexpr SceneSection kSections[] = {
      "nodes held at their initial positions, chosen in rest space; no section, none"},
     {"self_contact", &SceneDef::has_self_contact,
      "IPC contact of the boundary with itself (docs/method.md); no section, none"},
+    {"modes", nullptr, "`invfree modes`: the linear modal analysis of the scene (docs/modes.md)"},
     {"reduced", nullptr,
      "Newton's steps in a subspace x = x0 + B q (the course's chapter 9, "
      "core/scene/reduced_basis.h)"},
@@ -426,6 +427,10 @@ constexpr SceneField kFields[] = {
     boolean<&SceneDef::self_contact_ccd>(
         "self_contact", "ccd",
         "the line search's CCD filter (false only to show what goes wrong without it)"),
+    choice<&SceneDef::modes_element, kModalElementNames>(
+        "modes", "element",
+        "invfree modes' elements: linear triangles on the mesh, or bilinear quads (2x2 Gauss) "
+        "from its triangle pairs (a structured grid)"),
     rebuilds(choice<&SceneDef::reduced_basis, kReducedBasisNames>(
         "reduced", "basis",
         "the subspace: every unknown, polynomials of the rest position, or the rest "

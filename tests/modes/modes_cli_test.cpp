@@ -40,8 +40,8 @@ bool empty_or_missing(const std::string& dir) {
 
 TEST(ModesCommand, WritesLinearPyEigenvaluesAndAPicturePerMode) {
   const std::string dir = fresh_dir("quad");
-  const auto r =
-      run("--scene modes-cantilever --element quad --count 8 --size 320x240 --out " + dir);
+  // The scene's [modes] element = "quad" is linear.py's; --element is not needed.
+  const auto r = run("--scene modes-cantilever --count 8 --size 320x240 --out " + dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("modes-cantilever: 8 modes (quad elements, 360 free degrees of freedom)"),
             std::string::npos)
@@ -69,6 +69,11 @@ TEST(ModesCommand, WritesLinearPyEigenvaluesAndAPicturePerMode) {
   EXPECT_FALSE(fs::exists(dir + "/mode_09.png"));
   EXPECT_FALSE(fs::exists(dir + "/modes.mp4"));
   EXPECT_FALSE(fs::exists(dir + "/.invfree.lock"));
+  // --element overrides the scene's element.
+  const auto triangles = run("--scene modes-cantilever --element triangle --count 1 --size "
+                             "320x240 --out " + fresh_dir("override"));
+  ASSERT_EQ(triangles.code, 0) << triangles.err;
+  EXPECT_NE(triangles.out.find("(triangle elements"), std::string::npos) << triangles.out;
   // A second run into the same directory needs --force.
   const auto again = run("--scene modes-cantilever --count 2 --size 320x240 --out " + dir);
   EXPECT_EQ(again.code, 2);

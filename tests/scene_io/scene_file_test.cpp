@@ -299,6 +299,7 @@ const std::map<std::string, Kind>& key_kinds() {
       {"self_contact.enabled", Kind::Bool},
       {"self_contact.friction", Kind::Number},
       {"self_contact.ccd", Kind::Bool},
+      {"modes.element", Kind::Enum},
       {"reduced.basis", Kind::Enum},
       {"reduced.order", Kind::Integer},
       {"reduced.modes", Kind::Integer},
