@@ -249,8 +249,17 @@ void update_scene(Simulation& sim, const SceneDef& scene) {
     sim = make_simulation(scene);
     return;
   }
+  // The modal basis is the rest Hessian's: a new material (the live sliders) has new modes.
+  const bool new_modes = scene.reduced_basis == ReducedBasis::Modal &&
+                         (scene.model != sim.scene.model || scene.lame != sim.scene.lame ||
+                          scene.bodies != sim.scene.bodies);
   sim.scene = scene;
   sim.triangle_lame = scene_triangle_lame(scene, sim.mesh);
+  if (new_modes) {
+    ReducedSolve& reduced = sim.workspace->newton.reduced;
+    reduced.basis = build_reduced_basis(scene, sim.mesh).basis;
+    reduced.transposed.resize(0, 0);
+  }
 }
 
 StepReport step(Simulation& sim) {

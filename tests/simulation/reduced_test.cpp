@@ -198,6 +198,28 @@ TEST(ReducedRun, TheIdentityBasisTakesTheFullModelsSteps) {
   }
 }
 
+TEST(ReducedRun, ANewMaterialGetsItsOwnModes) {
+  // The live sliders change mu and lambda without a new mesh (update_scene): the modal
+  // basis, the rest Hessian's eigenvectors, must follow the material (its Poisson ratio
+  // changes the modes' shapes), and the state must stay where it was.
+  SceneDef s = course9("course-9-modal");
+  Simulation sim = make_simulation(s);
+  for (int k = 0; k < 5; ++k) ASSERT_EQ(step(sim).status, StepStatus::Ok);
+  const VecX x = sim.x;
+  SceneDef softer = s;
+  softer.lame = lame_from_young_poisson(2e4, 0.2);
+  update_scene(sim, softer);
+  EXPECT_EQ(sim.x, x);
+  const Eigen::MatrixXd& B = sim.workspace->newton.reduced.basis;
+  const Eigen::MatrixXd fresh = build_reduced_basis(softer, sim.mesh).basis;
+  ASSERT_EQ(B.cols(), fresh.cols());
+  EXPECT_LT((B * B.transpose() - fresh * fresh.transpose()).norm(), 1e-8);
+  const Eigen::MatrixXd old = build_reduced_basis(s, sim.mesh).basis;
+  EXPECT_GT((B * B.transpose() - old * old.transpose()).norm(), 1e-3);
+  for (int k = 0; k < 5; ++k) ASSERT_EQ(step(sim).status, StepStatus::Ok);
+  EXPECT_LT(off_span(B, sim.x - make_simulation(softer).x), 1e-10);
+}
+
 TEST(ReducedBasis, MoreColumnsThanUnknownsIsRefused) {
   SceneDef s = course9("course-9-quadratic");
   s.n_seg = 1;  // 4 nodes, 8 unknowns; the quadratic basis has 12 columns
