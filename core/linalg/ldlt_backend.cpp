@@ -2,6 +2,8 @@
 // of the elimination tree.
 #include "linalg/ldlt_backend.h"
 
+#include <algorithm>
+
 #include <Eigen/OrderingMethods>
 #include <vector>
 
@@ -32,7 +34,12 @@ std::vector<int> fill_reducing_ordering(const SpMat& a, bool nested_dissection) 
 void analyze_like_the_solver(const SpMat& pattern, SparseLdlt& ldlt) {
   ldlt.analyze(pattern,
                fill_reducing_ordering(pattern, pattern.rows() >= kNestedDissectionMinUnknowns),
-               pattern.rows() >= kParallelLdltMinUnknowns ? kLdltBins : 1);
+               ldlt_parts(static_cast<int>(pattern.rows())));
+}
+
+int ldlt_parts(int unknowns) {
+  if (unknowns < kParallelLdltMinUnknowns) return 1;
+  return std::clamp(unknowns / kLdltUnknownsPerPart, 2, kLdltMaxParts);
 }
 
 }  // namespace invfree

@@ -1,6 +1,7 @@
 #include "linalg/sparse_ldlt.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "linalg/parallel.h"
@@ -85,11 +86,11 @@ inline double column_dot(int end, const int* li, const T* lx, const double* y) {
 constexpr int kBlock = 4;
 
 // Forward, L y = b: the block [a, a + W) updates its own rows, then every row below it,
-// the first `split` of `rows` in y and the rest in acc. Each row gets the columns'
+// the first `split` of `rows` in y and the rest in acc, at `slots` (one per row from `split`). Each row gets the columns'
 // updates in column order, as a column-by-column loop makes them.
 template <int W, class T>
 inline void forward_block(int a, int j1, const int* rows, int count, int split, const int* lp,
-                          const T* lx, double* y, double* acc) {
+                          const T* lx, double* y, double* acc, const int* slots) {
   const int b = a + W - 1;
   const T* v[W];
   double yc[W];
@@ -109,35 +110,37 @@ inline void forward_block(int a, int j1, const int* rows, int count, int split, 
   }
 #pragma GCC unroll 8
   for (int c = 0; c < W; ++c) v[c] += inner;
-  auto rows_into = [&](double* target, int begin, int end) {
-    for (int r = begin; r < end; ++r) {
-      double t = target[rows[r]];
+  for (int r = 0; r < split; ++r) {
+    double t = y[rows[r]];
 #pragma GCC unroll 8
-      for (int c = 0; c < W; ++c) t -= v[c][r] * yc[c];
-      target[rows[r]] = t;
-    }
-  };
-  rows_into(y, 0, split);
-  rows_into(acc, split, count);
+    for (int c = 0; c < W; ++c) t -= v[c][r] * yc[c];
+    y[rows[r]] = t;
+  }
+  for (int r = split; r < count; ++r) {
+    double t = acc[slots[r - split]];
+#pragma GCC unroll 8
+    for (int c = 0; c < W; ++c) t -= v[c][r] * yc[c];
+    acc[slots[r - split]] = t;
+  }
 }
 
 // The supernode [j0, j1] in blocks, left to right. rows, count, split: below j1.
 template <class T>
 inline void supernode_forward(int j0, int j1, const int* rows, int count, int split, const int* lp,
-                              const T* lx, double* y, double* acc) {
+                              const T* lx, double* y, double* acc, const int* slots) {
   for (int a = j0; a <= j1; a += kBlock) {
     switch (std::min(kBlock, j1 - a + 1)) {
       case 1:
-        forward_block<1>(a, j1, rows, count, split, lp, lx, y, acc);
+        forward_block<1>(a, j1, rows, count, split, lp, lx, y, acc, slots);
         break;
       case 2:
-        forward_block<2>(a, j1, rows, count, split, lp, lx, y, acc);
+        forward_block<2>(a, j1, rows, count, split, lp, lx, y, acc, slots);
         break;
       case 3:
-        forward_block<3>(a, j1, rows, count, split, lp, lx, y, acc);
+        forward_block<3>(a, j1, rows, count, split, lp, lx, y, acc, slots);
         break;
       default:
-        forward_block<kBlock>(a, j1, rows, count, split, lp, lx, y, acc);
+        forward_block<kBlock>(a, j1, rows, count, split, lp, lx, y, acc, slots);
     }
   }
 }
@@ -145,7 +148,7 @@ inline void supernode_forward(int j0, int j1, const int* rows, int count, int sp
 }  // namespace
 
 void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
-                         const std::vector<int>& new_to_old, int bins) {
+                         const std::vector<int>& new_to_old, int parts) {
   n_ = static_cast<int>(pattern.rows());
   const int n = n_;
   // Postorder the elimination tree of the given ordering: same fill, subtrees contiguous.
@@ -198,10 +201,12 @@ void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
   d_.assign(n, 0.0);
   std::fill(lnz_.begin(), lnz_.end(), 0);
   std::fill(flag.begin(), flag.end(), -1);
+  row_factor_work_.assign(n, 1.0);
   for (int k = 0; k < n; ++k) {
     flag[k] = k;
     for (int p = ap_[k]; p < ap_[k + 1]; ++p)
       for (int i = ai_[p]; flag[i] != k; i = parent_[i]) {
+        row_factor_work_[k] += 2.0 * lnz_[i] + 1.0;  // row k's update from column i
         li_[lp_[i] + lnz_[i]++] = k;
         flag[i] = k;
       }
@@ -212,8 +217,10 @@ void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
     factor_flops_ += c * c + c;
     solve_flops_ += 4.0 * c + 1.0;
   }
-  plan(std::clamp(bins, 1, 64));
+  plan(std::max(parts, 1));
   share_row_indices();
+  plan_accumulators();
+  size_scratch();
   work_.resize(n);
   if (!lx_float_.empty()) keep_float_copy(true);  // a kept copy follows the new factor's size
 }
@@ -227,17 +234,15 @@ void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
 void SparseLdlt::share_row_indices() {
   const int n = n_;
   auto count = [&](int j) { return lp_[j + 1] - lp_[j]; };
-  std::vector<char> is_top(n, 0);
-  for (int t : top_) is_top[t] = 1;
   solve_rows_.clear();
   solve_row_begin_.assign(n, 0);
   snode_last_.assign(n, 0);
-  // Chains do not cross from a bin's subtree into the top (the forward solve handles a
-  // supernode at once, and the two are solved at different times).
+  // Chains do not cross from one task into another (the forward solve handles a
+  // supernode at once, and two tasks are solved at different times).
   for (int first = 0; first < n;) {
     int last = first;
     while (last + 1 < n && parent_[last] == last + 1 && count(last) == count(last + 1) + 1 &&
-           is_top[last] == is_top[last + 1])
+           task_of_[last] == task_of_[last + 1])
       ++last;
     const int base = static_cast<int>(solve_rows_.size());
     solve_rows_.insert(solve_rows_.end(), li_.begin() + lp_[first], li_.begin() + lp_[first + 1]);
@@ -264,25 +269,23 @@ struct WorkTree {
   bool heavier(int a, int b) const {
     return subtree[a] != subtree[b] ? subtree[a] > subtree[b] : a < b;
   }
-  // Largest-first assignment of the candidate subtrees to bins; returns the largest bin.
-  double assign(std::vector<int> cand, int bins, std::vector<int>* owner) const {
-    std::sort(cand.begin(), cand.end(), [this](int a, int b) { return heavier(a, b); });
-    std::vector<double> load(bins, 0.0);
-    for (int c : cand) {
-      const int b = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
-      load[b] += subtree[c];
-      if (owner) owner->push_back(b);
-    }
-    return *std::max_element(load.begin(), load.end());
-  }
   // Moves the heaviest candidate's root to the top, its children into the candidates.
-  void expand(std::vector<int>& cand, double& top_work) const {
+  // False (and nothing moved) where that would put more than half the work in the top.
+  bool expand(std::vector<int>& cand, std::vector<char>& is_top, double& top_work) const {
     auto it =
         std::min_element(cand.begin(), cand.end(), [this](int a, int b) { return heavier(a, b); });
     const int c = *it;
-    cand.erase(it);
+    if (top_work + w[c] > 0.5 * total) return false;
     top_work += w[c];
+    cand.erase(it);
+    is_top[c] = 1;
     for (int child : children[c]) cand.push_back(child);
+    return true;
+  }
+  double heaviest(const std::vector<int>& cand) const {
+    double m = 0.0;
+    for (int c : cand) m = std::max(m, subtree[c]);
+    return m;
   }
 };
 
@@ -307,75 +310,154 @@ WorkTree work_tree(int n, const std::vector<int>& lp, const std::vector<int>& pa
   return t;
 }
 
-// How many expansions of the heaviest subtree minimise (serial top work) + (largest bin's
-// work), trying up to 4n while the top holds at most half the work.
-int best_expansions(const WorkTree& t, int bins, int n) {
-  if (bins == 1) return 0;
-  std::vector<int> cand = t.roots;
-  double top_work = 0.0;
-  int best_steps = 0;
-  double best_cost = t.assign(cand, bins, nullptr);
-  for (int step = 1; step <= 4 * n && !cand.empty(); ++step) {
-    t.expand(cand, top_work);
-    if (top_work > 0.5 * t.total) break;
-    const double cost = top_work + t.assign(cand, bins, nullptr);
-    if (cost < best_cost) {
-      best_cost = cost;
-      best_steps = step;
-    }
-  }
-  return best_steps;
-}
-
 }  // namespace
 
-// Cuts the postordered tree into a top and disjoint subtrees over `bins` bins,
-// minimising (serial top work) + (largest bin's work) over successive expansions of the
-// heaviest subtree; work = a column's share of one solve.
-void SparseLdlt::plan(int bins) {
+// The schedule: the tree cut into tasks, each a set of columns whose rows it factorises
+// and solves, ordered in levels so that a task only needs tasks of lower levels (its
+// columns' descendants) before it and only tasks of higher levels after it in the
+// backward solve.
+//   Level 0: the subtrees left when the heaviest subtree has been expanded until none
+//   holds more than 1/parts of the work (or the expanded columns, the top, would hold
+//   half of it), dealt largest-first into `parts` bins.
+//   Above: the expanded columns (the top) in chains: a column with exactly one child in
+//   the top joins that child's task, any other starts a task; a task's level is one more
+//   than the highest of the tasks holding its columns' children.
+// The cut depends on the matrix and `parts` alone, never on the thread count.
+void SparseLdlt::plan(int parts) {
   const int n = n_;
   const WorkTree t = work_tree(n, lp_, parent_);
-  const int best_steps = best_expansions(t, bins, n);
   std::vector<int> cand = t.roots;
+  std::vector<char> is_top(n, 0);
   double top_work = 0.0;
-  for (int step = 0; step < best_steps; ++step) t.expand(cand, top_work);
-  serial_fraction_ = t.total > 0.0 ? top_work / t.total : 0.0;
-  const std::vector<int>& first = t.first;
+  if (parts > 1)
+    while (!cand.empty() && t.heaviest(cand) > t.total / parts &&
+           t.expand(cand, is_top, top_work)) {
+    }
 
+  // Level 0: the candidate subtrees in bins, largest first into the lightest bin.
   std::sort(cand.begin(), cand.end(), [&t](int a, int b) { return t.heavier(a, b); });
-  std::vector<int> owner;
-  t.assign(cand, bins, &owner);
-  std::vector<std::vector<std::pair<int, int>>> per_bin(bins);
-  std::vector<char> is_top(n, 1);
-  for (std::size_t k = 0; k < cand.size(); ++k) {
-    const int c = cand[k];
-    per_bin[owner[k]].push_back({first[c], c + 1});
-    for (int j = first[c]; j <= c; ++j) is_top[j] = 0;
+  const int bins = std::max(1, std::min<int>(parts, static_cast<int>(cand.size())));
+  std::vector<double> load(bins, 0.0);
+  std::vector<std::vector<std::pair<int, int>>> task_ranges(bins);
+  task_of_.assign(n, -1);
+  for (int c : cand) {
+    const int b = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
+    load[b] += t.subtree[c];
+    task_ranges[b].push_back({t.first[c], c + 1});
+    for (int j = t.first[c]; j <= c; ++j) task_of_[j] = b;
   }
+  std::vector<int> level(bins, 0);
+  std::vector<double> task_work(load);
+  // The top in chains, children before parents (postorder).
+  for (int j = 0; j < n; ++j) {
+    if (!is_top[j]) continue;
+    int top_children = 0, only = -1, lvl = 0;
+    for (int c : t.children[j]) {
+      if (is_top[c]) {
+        ++top_children;
+        only = c;
+      }
+    }
+    int task;
+    if (top_children == 1) {
+      task = task_of_[only];
+    } else {
+      task = static_cast<int>(task_ranges.size());
+      task_ranges.emplace_back();
+      level.push_back(0);
+      task_work.push_back(0.0);
+    }
+    for (int c : t.children[j])
+      if (task_of_[c] != task) lvl = std::max(lvl, level[task_of_[c]] + 1);
+    level[task] = std::max(level[task], lvl);
+    task_of_[j] = task;
+    task_work[task] += t.w[j];
+    auto& r = task_ranges[task];
+    if (!r.empty() && r.back().second == j)
+      ++r.back().second;
+    else
+      r.push_back({j, j + 1});
+  }
+  for (auto& r : task_ranges) std::sort(r.begin(), r.end());
+
+  // Number the tasks by level, the heaviest first within a level (claimed first).
+  const int tasks = static_cast<int>(task_ranges.size());
+  std::vector<int> order(tasks);
+  for (int k = 0; k < tasks; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    if (level[a] != level[b]) return level[a] < level[b];
+    if (task_work[a] != task_work[b]) return task_work[a] > task_work[b];
+    return task_ranges[a].front() < task_ranges[b].front();
+  });
+  std::vector<int> renumber(tasks);
+  for (int k = 0; k < tasks; ++k) renumber[order[k]] = k;
+  for (int j = 0; j < n; ++j) task_of_[j] = renumber[task_of_[j]];
   ranges_.clear();
   range_begin_.assign(1, 0);
-  for (auto& r : per_bin) {
-    std::sort(r.begin(), r.end());
-    ranges_.insert(ranges_.end(), r.begin(), r.end());
+  level_begin_.assign(1, 0);
+  task_work_.assign(tasks, 0.0);
+  for (int k = 0; k < tasks; ++k) {
+    const int old = order[k];
+    ranges_.insert(ranges_.end(), task_ranges[old].begin(), task_ranges[old].end());
     range_begin_.push_back(static_cast<int>(ranges_.size()));
+    task_work_[k] = task_work[old];
+    if (k > 0 && level[old] != level[order[k - 1]]) level_begin_.push_back(k);
   }
-  top_.clear();
-  for (int j = 0; j < n; ++j)
-    if (is_top[j]) top_.push_back(j);
-  // A column's rows are its ancestors: those in its own subtree come first (they are
-  // numbered below the subtree's root), the top ones after.
+  level_begin_.push_back(tasks);
+
+  // A column's rows are its ancestors: those in its own task come first (an ancestor in
+  // another task belongs to a task of a higher level, whose columns are all above it).
   split_.assign(n, 0);
   for (int j = 0; j < n; ++j) {
     int p = lp_[j];
-    while (p < lp_[j + 1] && !is_top[li_[p]]) ++p;
+    while (p < lp_[j + 1] && task_of_[li_[p]] == task_of_[j]) ++p;
     split_[j] = p;
   }
-  scratch_.assign(bins, Scratch{});
-  for (Scratch& s : scratch_) {
-    s.y.assign(n, 0.0);
-    s.acc.assign(n, 0.0);
-    s.flag.assign(n, -1);
-    s.pattern.assign(n, 0);
+  // Fraction of the solve's work in levels of one task, which nothing else overlaps.
+  double alone = 0.0;
+  for (std::size_t l = 0; l + 1 < level_begin_.size(); ++l)
+    if (level_begin_[l + 1] - level_begin_[l] == 1) alone += task_work_[level_begin_[l]];
+  serial_fraction_ = t.total > 0.0 && tasks > 1 ? alone / t.total : 0.0;
+}
+
+// The forward solve's updates from a task to rows of other tasks go to the task's own
+// accumulator slots (one per distinct such row), added to y by the row's task before it
+// starts, in task order: every sum has an order fixed by the schedule.
+void SparseLdlt::plan_accumulators() {
+  const int n = n_;
+  const int tasks = static_cast<int>(range_begin_.size()) - 1;
+  ext_base_.assign(n, 0);
+  ext_slots_.clear();
+  acc_begin_.assign(tasks + 1, 0);
+  std::vector<int> slot_of(n, -1), seen_in(n, -1);
+  std::vector<std::vector<int>> gathers(n);  // per row: the slots that feed it, task order
+  int slots = 0;
+  for (int task = 0; task < tasks; ++task) {
+    acc_begin_[task] = slots;
+    for (int r = range_begin_[task]; r < range_begin_[task + 1]; ++r)
+      for (int j = ranges_[r].first; j < ranges_[r].second; j = snode_last_[j] + 1) {
+        const int last = snode_last_[j];
+        const int* rows = solve_rows_.data() + solve_row_begin_[last];
+        const int count = lp_[last + 1] - lp_[last], split = split_[last] - lp_[last];
+        ext_base_[last] = static_cast<int>(ext_slots_.size());
+        for (int q = split; q < count; ++q) {
+          const int row = rows[q];
+          if (seen_in[row] != task) {
+            seen_in[row] = task;
+            slot_of[row] = slots++;
+            gathers[row].push_back(slot_of[row]);
+          }
+          ext_slots_.push_back(slot_of[row]);
+        }
+      }
+  }
+  acc_begin_[tasks] = slots;
+  acc_.assign(slots, 0.0);
+  gather_begin_.assign(n + 1, 0);
+  gather_slots_.clear();
+  for (int j = 0; j < n; ++j) {
+    gather_slots_.insert(gather_slots_.end(), gathers[j].begin(), gathers[j].end());
+    gather_begin_[j + 1] = static_cast<int>(gather_slots_.size());
   }
 }
 
@@ -418,23 +500,47 @@ void SparseLdlt::factor_rows(int begin, int end, Scratch& s, bool positive_defin
   }
 }
 
+void SparseLdlt::size_scratch() {
+  const int runners = std::clamp(thread_count(), 1, kMaxRunners);
+  if (static_cast<int>(scratch_.size()) == runners) return;
+  scratch_.assign(runners, Scratch{});
+  for (Scratch& s : scratch_) {
+    s.y.assign(n_, 0.0);
+    s.flag.assign(n_, -1);
+    s.pattern.assign(n_, 0);
+  }
+}
+
 bool SparseLdlt::factorize(const Eigen::SparseMatrix<double>& a, bool positive_definite) {
   const double* values = a.valuePtr();
   for (std::size_t k = 0; k < source_.size(); ++k) ax_[k] = values[source_[k]];
-  const int bins = static_cast<int>(scratch_.size());
-  bool ok_bin[64];
-  thread_pool().run(bins, [&](int b) {
-    ok_bin[b] = true;
-    // Marks of an earlier factorisation would stop this one's row walks early.
-    std::fill(scratch_[b].flag.begin(), scratch_[b].flag.end(), -1);
-    for (int r = range_begin_[b]; r < range_begin_[b + 1]; ++r)
-      factor_rows(ranges_[r].first, ranges_[r].second, scratch_[b], positive_definite, ok_bin[b]);
+  size_scratch();  // allocates only where the thread count changed since the analysis
+  const int runners = static_cast<int>(scratch_.size());
+  // Each runner works with its own scratch; marks of an earlier factorisation would stop
+  // this one's row walks early.
+  char ok_runner[kMaxRunners];
+  thread_pool().run(runners, [&](int r) {
+    std::fill(scratch_[r].flag.begin(), scratch_[r].flag.end(), -1);
+    ok_runner[r] = 1;
   });
-  bool ok = true;
-  for (int b = 0; b < bins; ++b) ok = ok && ok_bin[b];
-  for (std::size_t t = 0; t < top_.size() && ok; ++t)
-    factor_rows(top_[t], top_[t] + 1, scratch_[0], positive_definite, ok);
-  if (ok && !lx_float_.empty()) {
+  const int levels = static_cast<int>(level_begin_.size()) - 1;
+  for (int l = 0; l < levels; ++l) {
+    const int first = level_begin_[l], count = level_begin_[l + 1] - first;
+    std::atomic<int> next{0};
+    thread_pool().run(std::min(runners, count), [&](int r) {
+      bool ok = ok_runner[r] != 0;
+      for (int k; ok && (k = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
+        const int task = first + k;
+        for (int q = range_begin_[task]; q < range_begin_[task + 1] && ok; ++q)
+          factor_rows(ranges_[q].first, ranges_[q].second, scratch_[r], positive_definite, ok);
+      }
+      ok_runner[r] = ok ? 1 : 0;
+    });
+    bool ok = true;
+    for (int r = 0; r < runners; ++r) ok = ok && ok_runner[r];
+    if (!ok) return false;
+  }
+  if (!lx_float_.empty()) {
     // Made once every row is done: row k writes entry k of the columns below it.
     const std::size_t count = lx_.size();
     const BlockSplit blocks = split_blocks(static_cast<int>(count), 1 << 16, 64);
@@ -443,7 +549,7 @@ bool SparseLdlt::factorize(const Eigen::SparseMatrix<double>& a, bool positive_d
         lx_float_[k] = static_cast<float>(lx_[k]);
     });
   }
-  return ok;
+  return true;
 }
 
 void SparseLdlt::keep_float_copy(bool on) {
@@ -455,52 +561,84 @@ template <class T>
 void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
   const int n = n_;
   double* y = work_.data();
+  double* acc = acc_.data();
   const int* lp = lp_.data();
   // Column j's rows: sr[sb[j]] .. sr[sb[j] + lp[j + 1] - lp[j] - 1] (share_row_indices).
   const int* sb = solve_row_begin_.data();
   const int* sr = solve_rows_.data();
+  const int* gb = gather_begin_.data();
+  const int* gs = gather_slots_.data();
   const double* d = d_.data();
   for (int i = 0; i < n; ++i) y[old_to_new_[i]] = b[i];
-  const int bins = static_cast<int>(scratch_.size());
-  // Forward: L y = b, the subtrees per bin, then the top.
-  thread_pool().run(bins, [&](int bin) {
-    double* acc = scratch_[bin].acc.data();
-    for (int r = range_begin_[bin]; r < range_begin_[bin + 1]; ++r)
-      for (int j = ranges_[r].first; j < ranges_[r].second; j = snode_last_[j] + 1) {
-        const int last = snode_last_[j];
-        supernode_forward(j, last, sr + sb[last], lp[last + 1] - lp[last], split_[last] - lp[last],
-                          lp, lx, y, acc);
-      }
-  });
-  for (int t : top_) {
-    double v = y[t];
-    for (Scratch& s : scratch_) {
-      v += s.acc[t];
-      s.acc[t] = 0.0;
-    }
-    y[t] = v;
+  const int levels = static_cast<int>(level_begin_.size()) - 1;
+  // Forward: L y = b, level by level; a task first takes the updates its rows received
+  // from the tasks below, then updates its own rows in y and the others' in its slots.
+  for (int l = 0; l < levels; ++l) {
+    const int first = level_begin_[l];
+    thread_pool().run(level_begin_[l + 1] - first, [&](int k) {
+      const int task = first + k;
+      std::fill(acc + acc_begin_[task], acc + acc_begin_[task + 1], 0.0);
+      for (int r = range_begin_[task]; r < range_begin_[task + 1]; ++r)
+        for (int j = ranges_[r].first; j < ranges_[r].second; ++j) {
+          double v = y[j];
+          for (int g = gb[j]; g < gb[j + 1]; ++g) v += acc[gs[g]];
+          y[j] = v;
+        }
+      for (int r = range_begin_[task]; r < range_begin_[task + 1]; ++r)
+        for (int j = ranges_[r].first; j < ranges_[r].second; j = snode_last_[j] + 1) {
+          const int last = snode_last_[j];
+          supernode_forward(j, last, sr + sb[last], lp[last + 1] - lp[last],
+                            split_[last] - lp[last], lp, lx, y, acc,
+                            ext_slots_.data() + ext_base_[last]);
+        }
+    });
   }
-  for (std::size_t k = 0; k < top_.size();) {
-    const int t = top_[k], last = snode_last_[t];
-    const int count = lp[last + 1] - lp[last];
-    supernode_forward(t, last, sr + sb[last], count, count, lp, lx, y, nullptr);
-    k += static_cast<std::size_t>(last - t + 1);
+  // Backward: D L^T x = y, the levels top down, each column a dot product in
+  // column_dot's fixed order. (Summing a supernode block's dot products in one pass, as
+  // the forward solve's updates are, would be faster but changes the rounding, and n_seg
+  // 256's fold steps are sensitive to rounding: see docs/performance.md.)
+  for (int l = levels; l-- > 0;) {
+    const int first = level_begin_[l];
+    thread_pool().run(level_begin_[l + 1] - first, [&](int k) {
+      const int task = first + k;
+      for (int r = range_begin_[task + 1]; r-- > range_begin_[task];)
+        for (int j = ranges_[r].second; j-- > ranges_[r].first;)
+          y[j] = y[j] / d[j] - column_dot(lp[j + 1] - lp[j], sr + sb[j], lx + lp[j], y);
+    });
   }
-  // Backward: D L^T x = y, the top first, then the subtrees per bin.
-  // Column by column, each a dot product in column_dot's fixed order. (Summing a
-  // supernode block's dot products in one pass, as the forward solve's updates are, would
-  // be faster but changes the rounding, and n_seg 256's fold steps are sensitive to
-  // rounding: see docs/performance.md, "The fold steps at n_seg 256".)
-  for (auto it = top_.rbegin(); it != top_.rend(); ++it) {
-    const int t = *it;
-    y[t] = y[t] / d[t] - column_dot(lp[t + 1] - lp[t], sr + sb[t], lx + lp[t], y);
-  }
-  thread_pool().run(bins, [&](int bin) {
-    for (int r = range_begin_[bin + 1]; r-- > range_begin_[bin];)
-      for (int j = ranges_[r].second; j-- > ranges_[r].first;)
-        y[j] = y[j] / d[j] - column_dot(lp[j + 1] - lp[j], sr + sb[j], lx + lp[j], y);
-  });
   for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];
+}
+
+SparseLdlt::TreeParallelism SparseLdlt::tree_parallelism() const {
+  TreeParallelism t;
+  std::vector<double> factor_path(n_, 0.0), solve_path(n_, 0.0);
+  for (int j = 0; j < n_; ++j) {  // postorder: children first
+    factor_path[j] += row_factor_work_[j];
+    solve_path[j] += 4.0 * (lp_[j + 1] - lp_[j]) + 1.0;
+    t.factor_work += row_factor_work_[j];
+    t.solve_work += 4.0 * (lp_[j + 1] - lp_[j]) + 1.0;
+    t.factor_span = std::max(t.factor_span, factor_path[j]);
+    t.solve_span = std::max(t.solve_span, solve_path[j]);
+    if (const int p = parent_[j]; p != -1) {
+      factor_path[p] = std::max(factor_path[p], factor_path[j]);
+      solve_path[p] = std::max(solve_path[p], solve_path[j]);
+    }
+  }
+  return t;
+}
+
+double SparseLdlt::schedule_speedup(int threads) const {
+  double total = 0.0, time = 0.0;
+  for (std::size_t l = 0; l + 1 < level_begin_.size(); ++l) {
+    double work = 0.0, largest = 0.0;
+    for (int t = level_begin_[l]; t < level_begin_[l + 1]; ++t) {
+      work += task_work_[t];
+      largest = std::max(largest, task_work_[t]);
+    }
+    total += work;
+    time += std::max(largest, work / std::max(threads, 1));
+  }
+  return time > 0.0 ? total / time : 1.0;
 }
 
 void SparseLdlt::solve(const VecX& b, VecX& x) {

@@ -1,30 +1,35 @@
-// Sparse LDL^T factorisation and solves of a symmetric positive definite matrix, split
+// Sparse LDL^T factorisation and solves of a symmetric positive definite matrix, spread
 // over threads along the elimination tree.
 //
 // The factor is the classic up-looking one (Davis, "Algorithm 849: a concise sparse
 // Cholesky factorization package", ACM TOMS 2005): row k of L is a sparse triangular
-// solve with the rows above it, D(k) what remains on the diagonal. Two rows whose
-// elimination-tree subtrees are disjoint never touch the same column of L, and a column
-// of L only holds rows that are its ancestors. So after a postorder (every subtree is a
-// contiguous range of columns) the tree is cut into a "top" (closed under ancestors,
-// done by one thread after the rest) and disjoint subtrees spread over a fixed number of
-// bins. The bins factorise their rows, and run their part of the forward and backward
-// solves, concurrently; the forward solve's updates to top rows go to a per-bin
-// accumulator added in bin order. Every sum is formed in an order fixed by the matrix
-// alone, so the result is bit-identical for any number of threads.
+// solve with the rows above it, D(k) what remains on the diagonal. Row k needs only the
+// rows of its elimination-tree subtree, and column j of L holds only rows that are its
+// ancestors. So after a postorder (every subtree a contiguous range of columns) the tree
+// is cut into tasks in levels (plan): level 0 holds the subtrees below a cut, dealt into
+// `parts` bins of equal work, and each level above the chains of the tree's top whose
+// children all lie in lower levels. The tasks of a level run concurrently on any number
+// of threads: they factorise their rows, and run their part of the forward solve (levels
+// upwards) and the backward solve (downwards). A task's forward updates to rows of other
+// tasks go to its own accumulator slots, which each row adds in task order before its
+// task starts. Every sum is thus formed in an order fixed by the matrix and `parts`, never
+// by the thread count: the result is bit-identical for 1, 2 or N threads.
 //
-// A 2D mesh ordered by nested dissection (or AMD) has a tree whose top separator is a
-// few dozen nodes: on the 2-core machines the solves PCG repeats run ~1.8x faster than on
-// one thread (`INVFREE_THREADS=1` against 2, `invfree_bench --benchmark_filter=LdltSolve`).
+// A 2D mesh ordered by nested dissection has a tree whose top separators are a few dozen
+// to a few hundred unknowns: one solve's work is ~11x its span (the heaviest root-to-leaf
+// path) at n_seg 256, the factorisation's only ~1.6x (its top rows are long sparse
+// solves); `invfree_bench --benchmark_filter=LdltSolve` prints both ratios
+// (tree_parallelism below).
 //
 // The solves, which PCG repeats many times per factorisation and which are bound by
 // memory traffic, read one list of row indices per fundamental supernode instead of one
 // per column, and the forward solve works on blocks of up to four of a supernode's
 // columns, reading and writing each row below a block once. The values and the order of
-// every operation are those of a column-by-column solve, so are the bits.
+// every operation within a task are those of a column-by-column solve.
 //
 // Inputs: the full symmetric pattern (CSC, both triangles, sorted) and a fill-reducing
-// ordering; then values on that same pattern. No allocation after `analyze`.
+// ordering; then values on that same pattern. No allocation after `analyze` (unless the
+// thread count changes: each thread factorises with its own scratch).
 #pragma once
 
 #include <Eigen/SparseCore>
@@ -37,9 +42,11 @@ namespace invfree {
 class SparseLdlt {
  public:
   // new_to_old: a fill-reducing ordering of the pattern's rows; it is postordered here.
-  // bins: how many independent parts to cut the tree into (1: serial).
+  // parts: how many bins of independent subtrees the tree's bottom is cut into (1: one
+  // task, serial). It fixes the rounding of the solves, so it must not depend on the
+  // thread count.
   void analyze(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>& new_to_old,
-               int bins);
+               int parts);
   // Numeric factorisation of `a` (same pattern as analysed). False when a pivot is not
   // finite or zero, or (with `positive_definite`) not positive. Without it an indefinite
   // matrix with nonzero pivots factorises (an exact, unprojected Hessian).
@@ -59,18 +66,34 @@ class SparseLdlt {
   double solve_flops() const { return solve_flops_; }
   // Row indices the solves read (one list per supernode, see share_row_indices).
   long solve_row_indices() const { return static_cast<long>(solve_rows_.size()); }
-  // Fraction of the solve's work left to the serial top of the tree (0 with one bin).
+  // Fraction of the solve's work in levels of a single task, which no other work overlaps
+  // (0 with one part).
   double serial_fraction() const { return serial_fraction_; }
+  int task_count() const { return static_cast<int>(range_begin_.size()) - 1; }
+  int level_count() const { return static_cast<int>(level_begin_.size()) - 1; }
+  // The speed-up of one solve on `threads` threads that the schedule allows in the work
+  // model (each level takes its largest task or its work / threads, whichever is more).
+  double schedule_speedup(int threads) const;
   const std::vector<int>& old_to_new() const { return old_to_new_; }
+  // The parallelism the elimination tree allows: total work and the span (the heaviest
+  // root-to-leaf path, which no schedule can beat), for one factorisation and one solve
+  // pair, in the flop model above. work / span bounds the speed-up on any thread count.
+  struct TreeParallelism {
+    double factor_work = 0.0, factor_span = 0.0, solve_work = 0.0, solve_span = 0.0;
+  };
+  TreeParallelism tree_parallelism() const;
 
  private:
   struct Scratch {
-    std::vector<double> y, acc;
+    std::vector<double> y;
     std::vector<int> flag, pattern;
   };
+  static constexpr int kMaxRunners = 256;
   void factor_rows(int begin, int end, Scratch& s, bool positive_definite, bool& ok);
-  void plan(int bins);
+  void plan(int parts);
+  void plan_accumulators();
   void share_row_indices();
+  void size_scratch();
   template <class T>
   void solve_with(const T* lx, const VecX& b, VecX& x);
 
@@ -82,15 +105,22 @@ class SparseLdlt {
   std::vector<double> ax_;
   // The factor: L strictly lower, column-major; D.
   std::vector<int> parent_, lp_, li_, lnz_;
+  std::vector<double> row_factor_work_;  // per row: its share of factor_flops_
   std::vector<double> lx_, d_;
   std::vector<float> lx_float_;  // see keep_float_copy
-  // The plan: bin b owns the column ranges ranges_[range_begin_[b] .. range_begin_[b+1])
-  // (each [first, last+1)); top_ holds the remaining columns, ascending. split_[j] is the
-  // first entry of column j that lies in a top row.
-  std::vector<int> range_begin_;
+  // The plan: task t owns the column ranges ranges_[range_begin_[t] .. range_begin_[t+1])
+  // (each [first, last+1)); the tasks of level l are level_begin_[l] .. level_begin_[l+1].
+  // split_[j] is the first entry of column j that lies in a row of another task.
+  std::vector<int> range_begin_, level_begin_, task_of_;
   std::vector<std::pair<int, int>> ranges_;
-  std::vector<int> top_, split_;
-  std::vector<Scratch> scratch_;
+  std::vector<double> task_work_;
+  std::vector<int> split_;
+  // The forward solve's accumulators: task t's slots are acc_[acc_begin_[t] ..]; the rows
+  // from split_ on of the supernode ending at column j go to ext_slots_[ext_base_[j] ..];
+  // row j adds acc_[gather_slots_[gather_begin_[j] ..]] before its task starts.
+  std::vector<int> acc_begin_, ext_base_, ext_slots_, gather_begin_, gather_slots_;
+  std::vector<double> acc_;
+  std::vector<Scratch> scratch_;  // one per thread (factorize)
   // The solves' row indices: column j's are solve_rows_[solve_row_begin_[j] ..], one list
   // per supernode (share_row_indices).
   std::vector<int> solve_rows_, solve_row_begin_;

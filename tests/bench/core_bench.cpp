@@ -13,6 +13,7 @@
 #include <random>
 
 #include "collision/broad_phase.h"
+#include "linalg/cholmod_backend.h"
 #include "linalg/ldlt_backend.h"
 #include "linalg/parallel.h"
 #include "linalg/sparse_ldlt.h"
@@ -172,11 +173,63 @@ void BM_LdltSolve(benchmark::State& state) {
   for (auto _ : state) use_float ? ldlt.solve_float(b, x) : ldlt.solve(b, x);
   state.SetItemsProcessed(state.iterations() * ldlt.factor_nonzeros());
   state.counters["L_nonzeros"] = static_cast<double>(ldlt.factor_nonzeros());
+  const SparseLdlt::TreeParallelism tree = ldlt.tree_parallelism();
+  state.counters["factor_work/span"] = tree.factor_work / tree.factor_span;
+  state.counters["solve_work/span"] = tree.solve_work / tree.solve_span;
+  state.counters["tasks"] = ldlt.task_count();
+  state.counters["levels"] = ldlt.level_count();
+  state.counters["schedule_x2"] = ldlt.schedule_speedup(2);
+  state.counters["schedule_x16"] = ldlt.schedule_speedup(16);
 }
 BENCHMARK(BM_LdltSolve)
     ->ArgsProduct({{64, 128, 256}, {0, 1}})
     ->ArgNames({"n_seg", "float"})
     ->Unit(benchmark::kMillisecond);
+
+// One numeric factorisation of the same Hessian (PCG renews its factor about once in ten
+// steps; the direct solvers once per Newton iteration).
+void BM_LdltFactorize(benchmark::State& state) {
+  SceneDef scene = *load_builtin_scene("compress").scene;
+  scene.n_seg = static_cast<int>(state.range(0));
+  Simulation sim = make_simulation(scene);
+  step(sim);
+  VecX g;
+  ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, state_of(sim), g,
+                      sim.workspace->newton.hessian);
+  const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
+  SparseLdlt ldlt;
+  analyze_like_the_solver(h, ldlt);
+  for (auto _ : state)
+    if (!ldlt.factorize(h)) {
+      state.SkipWithError("factorisation failed");
+      return;
+    }
+  state.counters["L_nonzeros"] = static_cast<double>(ldlt.factor_nonzeros());
+}
+BENCHMARK(BM_LdltFactorize)->Arg(64)->Arg(128)->Arg(256)->ArgName("n_seg")->Unit(benchmark::kMillisecond);
+
+// CHOLMOD's supernodal factorisation of the same Hessian (the `cholmod` solver).
+void BM_CholmodFactorize(benchmark::State& state) {
+  SceneDef scene = *load_builtin_scene("compress").scene;
+  scene.n_seg = static_cast<int>(state.range(0));
+  Simulation sim = make_simulation(scene);
+  step(sim);
+  VecX g;
+  ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, state_of(sim), g,
+                      sim.workspace->newton.hessian);
+  const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
+  CholmodBackend chol;
+  if (!chol.analyze(h)) {
+    state.SkipWithError("no CHOLMOD");
+    return;
+  }
+  for (auto _ : state)
+    if (!chol.factorize(h)) {
+      state.SkipWithError("factorisation failed");
+      return;
+    }
+}
+BENCHMARK(BM_CholmodFactorize)->Arg(64)->Arg(128)->Arg(256)->ArgName("n_seg")->Unit(benchmark::kMillisecond);
 
 // Steps of `compress` at n_seg = range(0) in the compression phase (steps 120-260): the
 // hardest part of the run. The whole-run medians come from `invfree bench`.

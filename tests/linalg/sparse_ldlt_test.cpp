@@ -36,16 +36,18 @@ TEST(SparseLdlt, SolvesLikeAnIndependentFactorisation) {
     const SpMat a = mesh_matrix(n_seg, 1.0, 7u + n_seg);
     const VecX b = VecX::LinSpaced(a.rows(), -1.0, 2.0);
     const VecX exact = Eigen::SimplicialLDLT<SpMat>(a).solve(b);
-    for (int bins : {1, 2, 3}) {
+    for (int parts : {1, 2, 3, 16, 64}) {
       SparseLdlt ldlt;
-      ldlt.analyze(a, amd_order(a), bins);
-      ASSERT_TRUE(ldlt.factorize(a)) << n_seg << " " << bins;
+      ldlt.analyze(a, amd_order(a), parts);
+      ASSERT_TRUE(ldlt.factorize(a)) << n_seg << " " << parts;
       VecX x(a.rows());
       ldlt.solve(b, x);
-      EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm()) << "n_seg " << n_seg << ", bins " << bins;
+      EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm())
+          << "n_seg " << n_seg << ", parts " << parts;
       EXPECT_LT((a * x - b).norm(), 1e-12 * b.norm());
-      if (bins == 1) {
+      if (parts == 1) {
         EXPECT_EQ(ldlt.serial_fraction(), 0.0);
+        EXPECT_EQ(ldlt.task_count(), 1);
       }
       EXPECT_LT(ldlt.serial_fraction(), 0.5);
     }
@@ -131,6 +133,50 @@ TEST(SparseLdlt, TwoBinsRunConcurrentlyOnMostOfTheWork) {
   ldlt.analyze(a, amd_order(a), 2);
   EXPECT_GT(ldlt.serial_fraction(), 0.0);
   EXPECT_LT(ldlt.serial_fraction(), 0.2);
+  EXPECT_GT(ldlt.schedule_speedup(2), 1.6);
+}
+
+TEST(SparseLdlt, ManyPartsLetManyThreadsWork) {
+  // The levels above the bins run the top's chains side by side, so the schedule's
+  // speed-up goes on growing with the threads, up to the tree's work / span.
+  const SpMat a = mesh_matrix(96, 1.0, 5u);
+  SparseLdlt ldlt;
+  analyze_like_the_solver(a, ldlt);
+  ASSERT_GT(ldlt.task_count(), ldlt_parts(static_cast<int>(a.rows())));  // bins and chains
+  const SparseLdlt::TreeParallelism tree = ldlt.tree_parallelism();
+  const double s2 = ldlt.schedule_speedup(2), s16 = ldlt.schedule_speedup(16);
+  EXPECT_GT(s2, 1.8);
+  EXPECT_GT(s16, 5.0);
+  EXPECT_LE(s16, tree.solve_work / tree.solve_span * 1.0001);
+  EXPECT_LT(tree.factor_work / tree.factor_span, tree.solve_work / tree.solve_span);
+  EXPECT_GT(tree.factor_work / tree.factor_span, 1.0);
+}
+
+TEST(SparseLdlt, PartsSolveAlikeAndThreadsBitForBit) {
+  // The parts fix the order of the forward solve's sums: different parts agree to
+  // rounding, and for given parts every thread count gives the same bits.
+  const SpMat a = mesh_matrix(48, 1.0, 12u);
+  const VecX b = VecX::LinSpaced(a.rows(), -2.0, 5.0);
+  VecX reference(a.rows());
+  for (int parts : {1, 9, 64}) {
+    std::vector<VecX> results;
+    for (int threads : {1, 2, 4, 7}) {
+      set_thread_count(threads);
+      SparseLdlt ldlt;
+      ldlt.analyze(a, amd_order(a), parts);
+      ASSERT_TRUE(ldlt.factorize(a));
+      VecX x(a.rows());
+      ldlt.solve(b, x);
+      results.push_back(x);
+    }
+    if (parts == 1) reference = results[0];
+    EXPECT_LT((results[0] - reference).norm(), 1e-13 * reference.norm()) << parts;
+    for (std::size_t k = 1; k < results.size(); ++k)
+      EXPECT_EQ(0, std::memcmp(results[0].data(), results[k].data(),
+                               sizeof(double) * results[0].size()))
+          << "parts " << parts << ": threads differ";
+  }
+  set_thread_count(0);
 }
 
 TEST(SparseLdlt, SolvesReadOneRowListPerSupernode) {
@@ -171,7 +217,7 @@ TEST(SparseLdlt, BitIdenticalForAnyThreadCount) {
   for (int threads : {1, 2, 3}) {
     set_thread_count(threads);
     SparseLdlt ldlt;
-    ldlt.analyze(a, amd_order(a), 2);
+    analyze_like_the_solver(a, ldlt);
     ASSERT_TRUE(ldlt.factorize(a));
     VecX x(a.rows());
     for (int repeat = 0; repeat < 3; ++repeat) ldlt.solve(b, x);
