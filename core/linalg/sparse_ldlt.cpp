@@ -484,16 +484,56 @@ void SparseLdlt::factor_rows(int begin, int end, Scratch& s, bool positive_defin
     }
     double dk = y[k];
     y[k] = 0.0;
-    for (; head < n; ++head) {
+    // The pattern's columns in topological order; a run of consecutive columns of one
+    // supernode (up to kBlock) updates the rows below it together (forward_block: the
+    // same operations in the same order as one column after another, so the same bits).
+    // So far column j holds its rows below j and above k: in a supernode [j0, j1] with
+    // j1 < k, rows j + 1 .. j1 and then the first lnz_[j1] of the shared rows below j1;
+    // where k lies in the supernode, only rows j + 1 .. k - 1.
+    const int* lp = lp_.data();
+    if (!blocked_factor_) {
+      for (; head < n; ++head) {
+        const int i = pattern[head];
+        const double yi = y[i];
+        y[i] = 0.0;
+        const int p2 = lp[i] + lnz_[i];
+        for (int p = lp[i]; p < p2; ++p) y[li_[p]] -= lx_[p] * yi;
+        const double l_ki = yi / d_[i];
+        dk -= l_ki * yi;
+        lx_[p2] = l_ki;
+        ++lnz_[i];
+      }
+    }
+    while (head < n) {
       const int i = pattern[head];
-      const double yi = y[i];
-      y[i] = 0.0;
-      const int p2 = lp_[i] + lnz_[i];
-      for (int p = lp_[i]; p < p2; ++p) y[li_[p]] -= lx_[p] * yi;
-      const double l_ki = yi / d_[i];
-      dk -= l_ki * yi;
-      lx_[p2] = l_ki;
-      ++lnz_[i];
+      const int last = std::min(snode_last_[i], k - 1);
+      int w = 1;
+      while (w < kBlock && head + w < n && pattern[head + w] == i + w && i + w <= last) ++w;
+      const int below = snode_last_[i] < k ? lnz_[last] : 0;
+      const int* rows = solve_rows_.data() + solve_row_begin_[snode_last_[i]];
+      const double* lx = lx_.data();
+      switch (w) {
+        case 1:
+          forward_block<1>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
+          break;
+        case 2:
+          forward_block<2>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
+          break;
+        case 3:
+          forward_block<3>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
+          break;
+        default:
+          forward_block<kBlock>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
+      }
+      for (int j = i; j < i + w; ++j) {
+        const double yj = y[j];
+        y[j] = 0.0;
+        const double l_kj = yj / d_[j];
+        dk -= l_kj * yj;
+        lx_[lp[j] + lnz_[j]] = l_kj;
+        ++lnz_[j];
+      }
+      head += w;
     }
     d_[k] = dk;
     if (!std::isfinite(dk) || (positive_definite ? !(dk > 0.0) : dk == 0.0)) ok = false;

@@ -57,6 +57,9 @@ class SparseLdlt {
   // (arithmetic stays double), and solve_float reads that: half the memory traffic of a
   // solve, for a preconditioner. Without the copy solve_float is solve.
   void keep_float_copy(bool on);
+  // For tests: factorise one column at a time instead of in supernode blocks (the blocks
+  // make the same operations in the same order, so the factor has the same bits).
+  void set_blocked_factor(bool on) { blocked_factor_ = on; }
   void solve_float(const VecX& b, VecX& x);
 
   int size() const { return n_; }
@@ -121,6 +124,7 @@ class SparseLdlt {
   std::vector<int> acc_begin_, ext_base_, ext_slots_, gather_begin_, gather_slots_;
   std::vector<double> acc_;
   std::vector<Scratch> scratch_;  // one per thread (factorize)
+  bool blocked_factor_ = true;
   // The solves' row indices: column j's are solve_rows_[solve_row_begin_[j] ..], one list
   // per supernode (share_row_indices).
   std::vector<int> solve_rows_, solve_row_begin_;
