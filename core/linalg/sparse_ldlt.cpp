@@ -84,6 +84,9 @@ inline double column_dot(int end, const int* li, const T* lx, const double* y) {
 // at lx[lp[c] + b - c]. (The loops over a block's columns are unrolled so that its
 // pointers and values stay in registers.)
 constexpr int kBlock = 4;
+// The factorisation's blocks (factor_rows): its rows below a block are y's, in a scratch
+// vector that stays in cache, so wider blocks than the solves' still pay.
+constexpr int kFactorBlock = 8;
 
 // Forward, L y = b: the block [a, a + W) updates its own rows, then every row below it,
 // the first `split` of `rows` in y and the rest in acc, at `slots` (one per row from `split`). Each row gets the columns'
@@ -122,6 +125,16 @@ inline void forward_block(int a, int j1, const int* rows, int count, int split, 
     for (int c = 0; c < W; ++c) t -= v[c][r] * yc[c];
     acc[slots[r - split]] = t;
   }
+}
+
+// forward_block<w> for a block width known at run time (1 <= w <= W).
+template <int W>
+inline void factor_block(int w, int a, int j1, const int* rows, int count, const int* lp,
+                         const double* lx, double* y) {
+  if constexpr (W > 1) {
+    if (w < W) return factor_block<W - 1>(w, a, j1, rows, count, lp, lx, y);
+  }
+  forward_block<W>(a, j1, rows, count, count, lp, lx, y, nullptr, nullptr);
 }
 
 // The supernode [j0, j1] in blocks, left to right. rows, count, split: below j1.
@@ -508,23 +521,11 @@ void SparseLdlt::factor_rows(int begin, int end, Scratch& s, bool positive_defin
       const int i = pattern[head];
       const int last = std::min(snode_last_[i], k - 1);
       int w = 1;
-      while (w < kBlock && head + w < n && pattern[head + w] == i + w && i + w <= last) ++w;
+      while (w < kFactorBlock && head + w < n && pattern[head + w] == i + w && i + w <= last) ++w;
       const int below = snode_last_[i] < k ? lnz_[last] : 0;
       const int* rows = solve_rows_.data() + solve_row_begin_[snode_last_[i]];
       const double* lx = lx_.data();
-      switch (w) {
-        case 1:
-          forward_block<1>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
-          break;
-        case 2:
-          forward_block<2>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
-          break;
-        case 3:
-          forward_block<3>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
-          break;
-        default:
-          forward_block<kBlock>(i, last, rows, below, below, lp, lx, y, nullptr, nullptr);
-      }
+      factor_block<kFactorBlock>(w, i, last, rows, below, lp, lx, y);
       for (int j = i; j < i + w; ++j) {
         const double yj = y[j];
         y[j] = 0.0;
