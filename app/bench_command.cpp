@@ -3,19 +3,29 @@
 //                  median ms per step, Newton iterations per step, and where the time went
 //                  (assembly, factorisation, solve, line search, other; mean ms per step),
 //                  PCG iterations and factorisations per step, the linear solver used,
-//                  and mesh_ms: the time to mesh the scene's bodies at that n_seg, cold
+//                  and mesh_ms: the time to mesh the scene's bodies at that n_seg, cold;
+//                  then threads, speedup and efficiency (one row per size and thread count)
 //   DIR/bench.png  log-log chart of ms per step against degrees of freedom, with the
 //                  least-squares slope (fitted over n_seg >= 32 when two such sizes ran)
 // and a table on stdout. A scene with a reduced basis ([reduced]) also runs its full model on
 // each mesh (the same scene with basis "full"): its median ms per step and Newton iterations
-// per step are the last two columns (empty otherwise), the table says how many times faster
-// the reduced run is, and the chart draws the full model's curve. `--fps F` then finds, by bisection on n_seg, the largest mesh
-// whose median step still fits in a frame of 1/F s (one step per frame: the live mode's
+// per step are the columns full_median_ms and full_newton_per_step (empty otherwise), the
+// table says how many times faster the reduced run is, and the chart draws the full model's
+// curve. `--fps F` then finds, by bisection on n_seg, the largest mesh whose median step
+// still fits in a frame of 1/F s (one step per frame: the live mode's
 // n_seg slider). Times come from the step report's steady-clock split (core/simulation.h).
+//
+// `--threads 1,2,4` runs every size at every thread count (ascending; the core's
+// set_thread_count, core/linalg/parallel.h), one row each: the speed-up of the median step
+// against the smallest count and the parallel efficiency (speed-up / thread ratio), and
+// whether every step's positions were bit-identical across the counts (the core's pool
+// promises it). The chart then draws one line per thread count and a speed-up panel.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -49,7 +59,8 @@ struct BenchOptions {
   std::string sizes = "4,8,16,32,64,128,256";
   int steps = 300;
   std::string out_dir = "bench";
-  int threads = 0;
+  std::string threads;  // a list, e.g. "1,2,4", when threads_given
+  bool threads_given = false;  // else every core (or INVFREE_THREADS)
   double fps = 0.0;
   ChartFormat format = ChartFormat::Png;
   bool force = false;
@@ -68,7 +79,28 @@ struct BenchRow {
   std::string solver;
   // A reduced scene's full model on the same mesh (median ms, Newton per step); 0: none.
   double full_median_ms = 0, full_newton = 0;
+  // The thread count the row ran at; the median step's speed-up against the smallest count
+  // listed at the same size, and that over the thread ratio (1 and 1 for that count).
+  int threads = 0;
+  double speedup = 1.0, efficiency = 1.0;
+  // A hash of the positions (x and the ceiling's height) after every step that ran.
+  std::vector<std::uint64_t> step_hashes;
 };
+
+// The bits of the state's positions after a step: x (2N) and the ceiling's height, mixed
+// word by word (states that differ in any bit of any coordinate almost surely hash apart).
+std::uint64_t positions_hash(const Simulation& sim) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  auto mix = [&h](double value) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    h ^= bits + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    h *= 0xff51afd7ed558ccdull;
+  };
+  for (Eigen::Index i = 0; i < sim.x.size(); ++i) mix(sim.x[i]);
+  mix(sim.ceiling_y);
+  return h;
+}
 
 // The wall-clock ms to mesh every body of `scene` from its keys, as a scene's first load
 // does: a square's grid, a meshed shape's region and CGAL's refinement. mesh_shape caches
@@ -114,9 +146,36 @@ std::string parse_sizes(const std::string& text, std::vector<int>& sizes) {
   return "";
 }
 
+// "1,2,4" -> {1, 2, 4} (sorted ascending); "" on success, else the reason. Every count is a
+// whole number from 1 to 256 (as INVFREE_THREADS), each listed once.
+std::string parse_threads(const std::string& text, std::vector<int>& counts) {
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const bool digits = !item.empty() && item.size() <= 3 &&
+                        item.find_first_not_of("0123456789") == std::string::npos;
+    const int v = digits ? std::stoi(item) : 0;
+    if (v < 1 || v > 256) {
+      std::string shown = item.substr(0, 40);
+      for (char& c : shown)
+        if (c < ' ' || c == 127) c = '?';
+      return "--threads: \"" + shown + (item.size() > 40 ? "...\"" : "\"") +
+             " is not a thread count from 1 to 256 (a comma-separated list, e.g. 1,2,4)";
+    }
+    if (std::find(counts.begin(), counts.end(), v) != counts.end())
+      return "--threads: " + std::to_string(v) + " is listed twice";
+    counts.push_back(v);
+  }
+  if (counts.empty() || text.back() == ',')
+    return "--threads: expected a comma-separated list of thread counts, e.g. 1,2,4";
+  std::sort(counts.begin(), counts.end());
+  return "";
+}
+
 // Runs `steps` steps of `scene` at n_seg; false (and *error) when a step fails or on Ctrl-C.
+// With `hashes`, row.step_hashes gets the positions' hash after every step (outside the timing).
 bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::string* error,
-              int* code) {
+              int* code, bool hashes = false) {
   SceneDef scene = base;
   scene.n_seg = n_seg;
   if (auto e = validate_scene(scene); !e.empty()) {
@@ -127,6 +186,7 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
   Simulation sim = make_simulation(scene);
   row = BenchRow{};
   row.n_seg = n_seg;
+  row.threads = thread_count();
   row.mesh_ms = cold_mesh_ms(scene);
   row.nodes = sim.mesh.node_count();
   row.triangles = sim.mesh.triangle_count();
@@ -153,6 +213,7 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
       break;
     }
     ms.push_back(r.wall_ms);
+    if (hashes) row.step_hashes.push_back(positions_hash(sim));
     newton += r.newton_iterations;
     if (r.newton_iterations > row.newton_worst) {
       row.newton_worst = r.newton_iterations;
@@ -197,7 +258,7 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
   o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,newton_worst,"
        "newton_worst_step,assembly_ms,factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,"
        "factorizations_per_step,solver,self_contact_ms,mesh_ms,full_median_ms,"
-       "full_newton_per_step\n";
+       "full_newton_per_step,threads,speedup,efficiency\n";
   for (const auto& r : rows)
     o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
       << format_number(r.mean_ms, "%.6g") << "," << format_number(r.median_ms, "%.6g") << ","
@@ -208,7 +269,9 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
       << format_number(r.factorizations, "%.5g") << "," << r.solver << ","
       << format_number(r.self_contact, "%.6g") << "," << format_number(r.mesh_ms, "%.6g") << ","
       << (r.full_median_ms > 0 ? format_number(r.full_median_ms, "%.6g") : "") << ","
-      << (r.full_median_ms > 0 ? format_number(r.full_newton, "%.5g") : "") << "\n";
+      << (r.full_median_ms > 0 ? format_number(r.full_newton, "%.5g") : "") << "," << r.threads
+      << "," << format_number(r.speedup, "%.5g") << "," << format_number(r.efficiency, "%.5g")
+      << "\n";
   return o.str();
 }
 
@@ -304,6 +367,76 @@ ChartSpec chart(const std::vector<BenchRow>& rows, const std::string& scene_name
   return spec;
 }
 
+// The rows that ran at `threads` threads, in size order.
+std::vector<BenchRow> rows_at(const std::vector<BenchRow>& rows, int threads) {
+  std::vector<BenchRow> out;
+  for (const auto& r : rows)
+    if (r.threads == threads) out.push_back(r);
+  return out;
+}
+
+std::string threads_label(int threads) {
+  return std::to_string(threads) + (threads == 1 ? " thread" : " threads");
+}
+
+// A colour per thread count (then per size in the speed-up panel), in list order.
+Rgb series_color(std::size_t k) {
+  static constexpr Rgb palette[] = {{0.05f, 0.25f, 0.65f}, {0.85f, 0.45f, 0.05f},
+                                    {0.15f, 0.6f, 0.25f},  {0.75f, 0.1f, 0.1f},
+                                    {0.55f, 0.25f, 0.65f}, {0.1f, 0.6f, 0.65f},
+                                    {0.55f, 0.4f, 0.2f},   {0.85f, 0.35f, 0.6f}};
+  return palette[k % (sizeof palette / sizeof palette[0])];
+}
+
+// With several thread counts: the median step against unknowns, one line per count (and a
+// reduced scene's full model, dashed, per count), then the speed-up against the thread
+// count, one line per size, beside the ideal (linear in the thread ratio).
+std::vector<ChartSpec> thread_charts(const std::vector<BenchRow>& rows, const std::vector<int>& counts,
+                                     const std::string& scene_name) {
+  ChartSpec time;
+  time.title = "invfree bench: " + scene_name + ", time per step against unknowns, per thread count";
+  time.x_label = "degrees of freedom (2 x nodes + ceiling)";
+  time.y_label = "median ms per step";
+  time.log_x = time.log_y = true;
+  for (std::size_t k = 0; k < counts.size(); ++k) {
+    const std::vector<BenchRow> at = rows_at(rows, counts[k]);
+    if (at.empty()) continue;
+    Series s{threads_label(counts[k]) + " (median)", {}, {}, series_color(k)};
+    for (const auto& r : at) s.x.push_back(r.dofs), s.y.push_back(r.median_ms);
+    time.series.push_back(s);
+    if (at.front().full_median_ms > 0) {
+      Series full{threads_label(counts[k]) + ": full model, same mesh", {}, {}, series_color(k)};
+      full.dash = 8.0;
+      for (const auto& r : at) full.x.push_back(r.dofs), full.y.push_back(r.full_median_ms);
+      time.series.push_back(full);
+    }
+  }
+  if (!rows.empty())
+    time.notes.push_back("solver: " + rows.back().solver + ", " +
+                         std::to_string(rows.back().steps) + " steps per size and thread count");
+
+  ChartSpec speed;
+  speed.title = "speed-up of the median step against " + threads_label(counts.front());
+  speed.x_label = "threads";
+  speed.y_label = "speed-up";
+  std::vector<int> sizes;
+  for (const auto& r : rows)
+    if (std::find(sizes.begin(), sizes.end(), r.n_seg) == sizes.end()) sizes.push_back(r.n_seg);
+  Series ideal{"ideal (thread ratio)", {}, {}, Rgb{0.6f, 0.6f, 0.6f}};
+  ideal.markers = false;
+  ideal.dash = 8.0;
+  for (int t : counts) ideal.x.push_back(t), ideal.y.push_back(double(t) / counts.front());
+  speed.series.push_back(ideal);
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    Series s{"n_seg " + std::to_string(sizes[k]), {}, {}, series_color(k)};
+    for (const auto& r : rows)
+      if (r.n_seg == sizes[k]) s.x.push_back(r.threads), s.y.push_back(r.speedup);
+    speed.series.push_back(s);
+  }
+  speed.notes.push_back("parallel efficiency = speed-up / thread ratio (bench.csv's efficiency)");
+  return {time, speed};
+}
+
 // The largest n_seg in (lo, hi) whose median step fits in `budget_ms`, knowing lo fits
 // and hi does not; each candidate runs as many steps as the sweep (a shorter run would
 // see only the cheap falling phase).
@@ -322,12 +455,17 @@ int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_m
 
 // The stdout table: its header, then one line per size (with the speed-up over the
 // reference demo where it applies).
-void print_header() {
-  std::printf("%-6s %8s %10s %6s %10s %10s %7s %6s %9s %9s %9s %9s %9s %6s %9s  %s\n", "n_seg",
-              "dofs", "triangles", "steps", "median_ms", "mean_ms", "newton", "worst", "assembly",
-              "factor", "solve", "search", "contact", "pcg", "mesh_ms", "solver");
+// With several thread counts (`threads`), three more columns: the count, the speed-up and
+// the parallel efficiency.
+void print_header(bool threads) {
+  std::printf("%-6s ", "n_seg");
+  if (threads) std::printf("%7s ", "threads");
+  std::printf("%8s %10s %6s %10s %10s ", "dofs", "triangles", "steps", "median_ms", "mean_ms");
+  if (threads) std::printf("%7s %6s ", "speedup", "effic");
+  std::printf("%7s %6s %9s %9s %9s %9s %9s %6s %9s  %s\n", "newton", "worst", "assembly", "factor",
+              "solve", "search", "contact", "pcg", "mesh_ms", "solver");
 }
-void print_row(const BenchRow& row, bool reference) {
+void print_row(const BenchRow& row, bool reference, bool threads) {
   std::string speedup;
   for (int k = 0; k < 3; ++k)
     if (reference && row.n_seg == kReferenceNseg[k] && row.median_ms > 0.0)
@@ -336,11 +474,14 @@ void print_row(const BenchRow& row, bool reference) {
     speedup = "  full model " + format_number(row.full_median_ms, "%.4g") + " ms (" +
               format_number(row.full_newton, "%.3g") + " newton): " +
               format_number(row.full_median_ms / row.median_ms, "%.3g") + "x faster reduced";
-  std::printf(
-      "%-6d %8d %10d %6d %10.4f %10.4f %7.2f %6d %9.4f %9.4f %9.4f %9.4f %9.4f %6.2f %9.3f  %s%s\n",
-      row.n_seg, row.dofs, row.triangles, row.steps, row.median_ms, row.mean_ms, row.newton,
-      row.newton_worst, row.assembly, row.factor, row.solve, row.line_search, row.self_contact,
-      row.pcg, row.mesh_ms, row.solver.c_str(), speedup.c_str());
+  std::printf("%-6d ", row.n_seg);
+  if (threads) std::printf("%7d ", row.threads);
+  std::printf("%8d %10d %6d %10.4f %10.4f ", row.dofs, row.triangles, row.steps, row.median_ms,
+              row.mean_ms);
+  if (threads) std::printf("%6.3fx %6.3f ", row.speedup, row.efficiency);
+  std::printf("%7.2f %6d %9.4f %9.4f %9.4f %9.4f %9.4f %6.2f %9.3f  %s%s\n", row.newton,
+              row.newton_worst, row.assembly, row.factor, row.solve, row.line_search,
+              row.self_contact, row.pcg, row.mesh_ms, row.solver.c_str(), speedup.c_str());
   flush_standard_output();
 }
 
@@ -373,12 +514,42 @@ int report_fps(const SceneDef& scene, const std::vector<BenchRow>& rows, const B
   return exit_code::kOk;
 }
 
+// Whether every size's runs at the different thread counts left the same positions after
+// every step; "" when they did, else where they first differed. Sizes with one run are skipped.
+std::string compare_across_threads(const std::vector<BenchRow>& rows) {
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const BenchRow* base = nullptr;
+    for (std::size_t j = 0; j < k && !base; ++j)
+      if (rows[j].n_seg == rows[k].n_seg) base = &rows[j];
+    if (!base) continue;
+    const auto& a = base->step_hashes;
+    const auto& b = rows[k].step_hashes;
+    const std::size_t common = std::min(a.size(), b.size());
+    const auto diff = std::mismatch(a.begin(), a.begin() + common, b.begin()).first - a.begin();
+    const std::string where = "n_seg " + std::to_string(rows[k].n_seg) + ", " +
+                              threads_label(rows[k].threads) + " against " +
+                              threads_label(base->threads);
+    if (static_cast<std::size_t>(diff) < common)
+      return where + ": the positions differ from step " + std::to_string(diff + 1);
+    if (a.size() != b.size())
+      return where + ": " + std::to_string(b.size()) + " steps against " + std::to_string(a.size());
+  }
+  return "";
+}
+
 int run_bench(const BenchOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
   std::vector<int> sizes;
   if (auto e = parse_sizes(opt.sizes, sizes); !e.empty()) return fail(exit_code::kBadInput, e);
+  // The thread counts; {0}: the count already set (every core, or INVFREE_THREADS).
+  std::vector<int> counts;
+  if (!opt.threads_given)
+    counts = {0};
+  else if (auto e = parse_threads(opt.threads, counts); !e.empty())
+    return fail(exit_code::kBadInput, e);
+  const bool several = counts.size() > 1;
   for (int n : sizes) {
     SceneDef s = *scene;
     s.n_seg = n;
@@ -389,45 +560,70 @@ int run_bench(const BenchOptions& opt) {
                     chart_path = opt.out_dir + "/bench." + chart_extension(opt.format);
   if (auto e = check_output_files({csv_path, chart_path}, opt.scene.input_files(), opt.force))
     return fail(e.exit_code, e.message);
-  if (opt.threads > 0) set_thread_count(opt.threads);
+  if (counts.front() > 0) set_thread_count(counts.front());
+  if (counts.front() == 0) counts = {thread_count()};
 
-  print_header();
+  print_header(several);
   const bool reference = is_reference_scene(*scene);
   std::vector<BenchRow> rows;
   int code = exit_code::kOk;
-  for (int n : sizes) {
-    BenchRow row;
-    bool ok = run_size(*scene, n, opt.steps, row, &error, &code);
-    if (ok && scene->reduced_basis != ReducedBasis::Full) {
-      SceneDef full = *scene;
-      full.reduced_basis = ReducedBasis::Full;
-      BenchRow full_row;
-      ok = run_size(full, n, opt.steps, full_row, &error, &code);
-      if (ok) row.full_median_ms = full_row.median_ms, row.full_newton = full_row.newton;
+  bool ok = true;
+  for (std::size_t i = 0; i < sizes.size() && ok; ++i) {
+    const int n = sizes[i];
+    double base_median = 0.0;
+    for (std::size_t k = 0; k < counts.size() && ok; ++k) {
+      if (several) set_thread_count(counts[k]);  // between runs: never while a step runs
+      BenchRow row;
+      ok = run_size(*scene, n, opt.steps, row, &error, &code, several);
+      if (ok && scene->reduced_basis != ReducedBasis::Full) {
+        SceneDef full = *scene;
+        full.reduced_basis = ReducedBasis::Full;
+        BenchRow full_row;
+        ok = run_size(full, n, opt.steps, full_row, &error, &code);
+        if (ok) row.full_median_ms = full_row.median_ms, row.full_newton = full_row.newton;
+      }
+      if (!ok && row.steps == 0) break;
+      if (!ok) row.solver += " (failed at step " + std::to_string(row.steps + 1) + ")";
+      if (k == 0) base_median = row.median_ms;
+      if (k > 0 && row.median_ms > 0.0 && base_median > 0.0) {
+        row.speedup = base_median / row.median_ms;
+        row.efficiency = row.speedup * counts.front() / counts[k];
+      }
+      rows.push_back(row);
+      print_row(row, reference, several);
     }
-    if (!ok && row.steps == 0) break;
-    if (!ok) row.solver += " (failed at step " + std::to_string(row.steps + 1) + ")";
-    rows.push_back(row);
-    print_row(row, reference);
-    if (!ok) break;
   }
   // Whatever completed is written, also after a failure or Ctrl-C.
   if (!rows.empty()) {
+    if (several && code == exit_code::kOk) {
+      const std::string diff = compare_across_threads(rows);
+      std::printf("bit-identical across thread counts: %s\n",
+                  diff.empty() ? "yes (the positions after every step, at every size)"
+                               : ("no (" + diff + ")").c_str());
+    }
     if (auto e = write_file_atomically(csv_path, csv_text(rows)); !e.empty())
       return fail(exit_code::kOutputFailed, e);
-    if (auto e = write_canvas(
-            chart_path,
-            *chart_canvas({chart(rows, scene->name, is_reference_scene(*scene))}, opt.format));
-        !e.empty())
+    const std::vector<ChartSpec> panels =
+        several ? thread_charts(rows, counts, scene->name)
+                : std::vector<ChartSpec>{chart(rows, scene->name, reference)};
+    if (auto e = write_canvas(chart_path, *chart_canvas(panels, opt.format)); !e.empty())
       return fail(exit_code::kOutputFailed, e);
-    int from_n = 0;
-    if (const LogLogFit fit = fit_cost(rows, &from_n); fit.ok())
-      std::printf("fitted slope: ms per step ~ DOF^%.3f over n_seg >= %d\n", fit.slope, from_n);
+    for (int t : counts) {
+      int from_n = 0;
+      if (const LogLogFit fit = fit_cost(rows_at(rows, t), &from_n); fit.ok())
+        std::printf("fitted slope%s: ms per step ~ DOF^%.3f over n_seg >= %d\n",
+                    several ? (" at " + threads_label(t)).c_str() : "", fit.slope, from_n);
+    }
     std::printf("wrote %s and %s\n", csv_path.c_str(), chart_path.c_str());
   }
   if (code != exit_code::kOk) return fail(code, error);
 
-  if (opt.fps > 0.0) return report_fps(*scene, rows, opt);
+  if (opt.fps > 0.0) {
+    // With several counts, at the largest (the thread count set last).
+    if (several) std::printf("--fps at %s (the largest count listed):\n",
+                             threads_label(counts.back()).c_str());
+    return report_fps(*scene, rows_at(rows, counts.back()), opt);
+  }
   return exit_code::kOk;
 }
 
@@ -447,8 +643,10 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   add_output_directory_option(cmd, opt.out_dir, "output directory for bench.csv and bench.png");
   add_chart_format_option(cmd, opt.format);
   add_force_option(cmd, opt.force, "overwrite bench.csv and the chart if they exist");
-  cmd->add_option("--threads", opt.threads, "worker threads (default: every core)")
-      ->check(CLI::Range(1, 256));
+  cmd->add_option("--threads", opt.threads,
+                  "worker threads, or a comma-separated list (1,2,4) to run every size at each "
+                  "count and report the speed-up (default: every core)")
+      ->each([&given = opt.threads_given](const std::string&) { given = true; });
   cmd->add_option("--fps", opt.fps,
                   "then find the largest n_seg whose median step fits in one frame at this rate")
       ->check(finite_range(1.0, 10000.0));

@@ -118,6 +118,110 @@ TEST(BenchCommand, BadSizesAreBadInput) {
   }
 }
 
+// --threads LIST (issue 30): every size at every thread count, one row each, with the
+// speed-up of the median step against the smallest count and the efficiency; the runs leave
+// bit-identical positions after every step (n_seg 48 has two triangle blocks, so its energy
+// and gradient really split over the threads; n_seg 4 runs inline).
+TEST(BenchCommand, AThreadListRunsEverySizeAtEveryCount) {
+  const std::string dir = ::testing::TempDir() + "/bench_threads_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  const test::ProcessResult r = test::run_invfree(
+      {"bench", "--sizes", "4,48", "--steps", "4", "--out", dir, "--threads", "2,1"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("bit-identical across thread counts: yes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("speedup"), std::string::npos) << r.out;
+
+  std::istringstream csv(test::slurp(dir + "/bench.csv"));
+  std::string header;
+  ASSERT_TRUE(std::getline(csv, header));
+  const auto columns = split(header, ',');
+  // The columns before the thread sweep's keep their places.
+  ASSERT_GE(columns.size(), 25u);
+  EXPECT_EQ(columns[0], "n_seg");
+  EXPECT_EQ(columns[6], "median_ms");
+  EXPECT_EQ(columns[21], "full_newton_per_step");
+  auto col = [&](const std::string& name) {
+    const auto at = std::find(columns.begin(), columns.end(), name) - columns.begin();
+    EXPECT_LT(at, static_cast<long>(columns.size())) << "no column " << name;
+    return static_cast<std::size_t>(at);
+  };
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(csv, line);) rows.push_back(split(line, ','));
+  ASSERT_EQ(rows.size(), 4u);
+  const int n_seg[4] = {4, 4, 48, 48}, threads[4] = {1, 2, 1, 2};  // counts sorted ascending
+  for (int k = 0; k < 4; ++k) {
+    const auto& row = rows[k];
+    ASSERT_EQ(row.size(), columns.size());
+    EXPECT_EQ(std::stoi(row[col("n_seg")]), n_seg[k]);
+    EXPECT_EQ(std::stoi(row[col("threads")]), threads[k]);
+    EXPECT_EQ(std::stoi(row[col("steps")]), 4);
+    const double speedup = std::stod(row[col("speedup")]);
+    const double efficiency = std::stod(row[col("efficiency")]);
+    if (threads[k] == 1) {
+      EXPECT_EQ(speedup, 1.0);
+      EXPECT_EQ(efficiency, 1.0);
+    } else {
+      // Against the 1-thread row of the same size, from the medians as written (5 and 6
+      // significant digits).
+      const double expected =
+          std::stod(rows[k - 1][col("median_ms")]) / std::stod(row[col("median_ms")]);
+      EXPECT_NEAR(speedup, expected, 1e-4 * expected);
+      EXPECT_NEAR(efficiency, speedup / 2.0, 1e-4 * speedup);
+    }
+  }
+  const std::string png = test::slurp(dir + "/bench.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  std::filesystem::remove_all(dir);
+}
+
+// One count works as before: one row per size at that count, speed-up and efficiency 1,
+// and no comparison across counts.
+TEST(BenchCommand, OneThreadCountIsOneRowPerSize) {
+  const std::string dir = ::testing::TempDir() + "/bench_one_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  const test::ProcessResult r = test::run_invfree(
+      {"bench", "--sizes", "4,6", "--steps", "3", "--out", dir, "--threads", "2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("bit-identical"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("speedup"), std::string::npos) << "today's table: " << r.out;
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream csv(test::slurp(dir + "/bench.csv"));
+  for (std::string line; std::getline(csv, line);) rows.push_back(split(line, ','));
+  ASSERT_EQ(rows.size(), 3u);
+  const auto& header = rows[0];
+  const auto at = [&](const char* name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) -
+                                    header.begin());
+  };
+  ASSERT_LT(at("efficiency"), header.size());
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), header.size());
+    EXPECT_EQ(rows[k][at("threads")], "2");
+    EXPECT_EQ(rows[k][at("speedup")], "1");
+    EXPECT_EQ(rows[k][at("efficiency")], "1");
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Bad lists stop before anything runs or is written: one line naming --threads, exit 2.
+TEST(BenchCommand, BadThreadListsAreBadInput) {
+  const std::string dir = ::testing::TempDir() + "/bench_bad_threads_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  for (const char* threads : {"0", "-2", "x", "1,x", "1.5", "1,,2", "1,", "", "257", "1,2,1", "2,2"}) {
+    const test::ProcessResult r = test::run_invfree(
+        {"bench", "--sizes", "4", "--steps", "2", "--out", dir, "--threads", threads});
+    EXPECT_EQ(r.code, 2) << "--threads \"" << threads << "\": " << r.out;
+    EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bench.csv")) << threads;
+  }
+  const test::ProcessResult twice = test::run_invfree(
+      {"bench", "--sizes", "4", "--steps", "2", "--out", dir, "--threads", "1,2,1"});
+  EXPECT_NE(twice.err.find("1 is listed twice"), std::string::npos) << twice.err;
+  std::filesystem::remove_all(dir);
+}
+
 // A reduced scene ([reduced]) is timed against its full model on each mesh: the last two
 // columns hold the full model's median ms and Newton iterations per step, empty for a
 // scene without a basis (the test above).
