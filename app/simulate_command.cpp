@@ -14,7 +14,9 @@
 #include "app/interrupt.h"
 #include "app/output_files.h"
 #include "app/scene_options.h"
+#include "collision/intersection_check.h"
 #include "energy_report.h"
+#include "scene/boundary.h"
 #include "simulation.h"
 
 namespace invfree {
@@ -47,8 +49,45 @@ std::pair<double, double> det_f_range(const Simulation& sim) {
   return {*lo, *hi};
 }
 
+// Watches a run without self-contact (switched off, or unable to run: scene.h) for its
+// boundary crossing itself: the exact check of collision/intersection_check.h on every
+// accepted state, and one warning on stderr at the first crossing. With self-contact on,
+// the step's invariant already keeps every state free of crossings.
+class CrossingWatch {
+ public:
+  explicit CrossingWatch(const Simulation& sim)
+      : on_(!sim.scene.self_contact_on() && sim.mesh.triangle_count() > 0) {
+    if (on_) boundary_ = find_boundary(sim.mesh);
+  }
+  // Whether the state just accepted crosses itself; warns the first time.
+  bool check(const Simulation& sim) {
+    if (!on_) return false;
+    const auto hit = find_self_intersection(boundary_, sim.x, grid_, scratch_);
+    if (hit && !warned_) {
+      warned_ = true;
+      const auto& a = boundary_.edges[hit->edge_a];
+      const auto& b = boundary_.edges[hit->edge_b];
+      std::fprintf(stderr,
+                   "invfree: warning: step %ld: boundary edges %d-%d and %d-%d cross: without "
+                   "self-contact the boundary passes through itself (the CSV's "
+                   "self_intersecting column flags every such step)\n",
+                   sim.step_count, a[0], a[1], b[0], b[1]);
+    }
+    return hit.has_value();
+  }
+  bool warned() const { return warned_; }
+
+ private:
+  bool on_;
+  bool warned_ = false;
+  Boundary boundary_;
+  BroadPhaseGrid grid_;
+  std::vector<std::array<int, 2>> scratch_;
+};
+
 // The CSV row of the step just taken (the columns of --csv).
-void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r) {
+void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r,
+                   bool self_intersecting) {
   const auto [lo, hi] = det_f_range(sim);
   const double gap = min_plane_gap(sim);
   csv << sim.step_count << "," << sim.time << "," << r.newton_iterations << "," << r.residual << ","
@@ -57,7 +96,8 @@ void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r
   const EnergyReport e = energy_report(sim);
   csv << e.kinetic << "," << e.elastic << "," << e.gravitational << "," << e.contact << ",";
   const double self_gap = min_self_gap(sim);  // -1: no pair within dhat (or no self-contact)
-  csv << (std::isfinite(self_gap) ? self_gap : -1.0) << "," << r.wall_ms << "\n";
+  csv << (std::isfinite(self_gap) ? self_gap : -1.0) << "," << (self_intersecting ? 1 : 0) << ","
+      << r.wall_ms << "\n";
 }
 
 // The one-line summary on stdout: steps, time, mean Newton iterations and ms per step,
@@ -110,7 +150,7 @@ int run_simulate(const SimulateOptions& opt) {
   std::ostringstream csv;
   csv.precision(10);
   csv << "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,"
-         "kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n";
+         "kinetic,elastic,gravitational,contact,min_self_gap,self_intersecting,wall_ms\n";
   auto flush_csv = [&](bool force_flush) -> std::string {
     if (!csv_file.is_open() || (!force_flush && csv.tellp() < (1 << 16))) return "";
     const std::string chunk = csv.str();
@@ -124,6 +164,7 @@ int run_simulate(const SimulateOptions& opt) {
   // An OBJ that cannot be written (a full disk) ends the run with exit 4 but, as a failed
   // step or Ctrl-C does, keeps the CSV complete for the steps whose OBJ was written.
   std::string obj_error = write_obj();
+  CrossingWatch crossings(sim);
   for (int k = 0; obj_error.empty() && k < opt.steps && !interrupted(); ++k) {
     const StepReport r = step(sim);
     if (r.status != StepStatus::Ok) {
@@ -132,8 +173,10 @@ int run_simulate(const SimulateOptions& opt) {
     }
     total_iterations += r.newton_iterations;
     total_ms += r.wall_ms;
+    // After the warning only the CSV needs the check.
+    const bool crossing = (!crossings.warned() || csv_file.is_open()) && crossings.check(sim);
     if (obj_error = write_obj(); !obj_error.empty()) break;
-    write_csv_row(csv, sim, r);
+    write_csv_row(csv, sim, r, crossing);
     if (auto e = flush_csv(false); !e.empty()) return fail(exit_code::kOutputFailed, e);
   }
   // The table is complete for the steps kept, also after a failure or an interruption.
@@ -176,7 +219,7 @@ void register_simulate_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--csv", opt.csv_path,
                   "write one row per step: step,t,newton_iters,residual,incremental_potential,"
                   "min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,"
-                  "min_self_gap,wall_ms (energies in J; docs/outputs.md)")
+                  "min_self_gap,self_intersecting,wall_ms (energies in J; docs/outputs.md)")
       ->type_name("FILE")
       ->check(non_empty_path());
   cmd->add_flag("--force", opt.force,

@@ -11,6 +11,7 @@ EnergyReport energy_report_of(const StepProblem& p, StepCaches& caches, const Ve
   for (int i = 0; i < p.node_count(); ++i)
     e.kinetic += 0.5 * (*p.mass)[i] * v.segment<2>(2 * i).squaredNorm();
   EnergyBins bins;
+  begin_terms(p, caches, z);  // self-contact's candidates at z
   energies_by_kind(p, caches, z, bins);
   e.elastic = bins[EnergyKind::Elastic];
   e.gravitational = bins[EnergyKind::Gravity];
@@ -22,7 +23,7 @@ EnergyReport energy_report(const Simulation& sim, EnergyReportParts parts) {
   const SceneDef& s = sim.scene;
   const bool contact = parts == EnergyReportParts::All;
   Boundary scratch;  // the live window calls this every frame: the step's boundary serves
-  const Boundary* boundary = contact && s.has_self_contact ? &boundary_now(sim, scratch) : nullptr;
+  const Boundary* boundary = contact && s.self_contact_on() ? &boundary_now(sim, scratch) : nullptr;
   StepProblem p;
   StepCaches caches;
   make_terms(sim, boundary, p, caches);

@@ -46,19 +46,22 @@ void make_ceiling(const Simulation& sim, StepProblem& p) {
   penalty.fixed = false;
 }
 
-// Self-contact: candidates at x^n and friction lagged there.
+// Self-contact: friction lagged at x^n (from the candidates there).
 void make_self_contact(const Simulation& sim, const Boundary* boundary, StepProblem& p,
                        StepCaches& caches) {
   const SceneDef& s = sim.scene;
   SelfContact& c = p.self_contact;
   caches.contact.ms = 0.0;
-  c.on = s.has_self_contact && boundary;
+  c.on = s.self_contact_on() && boundary;
   if (!c.on) return;
   c.boundary = boundary;
   c.rest = &sim.mesh.rest;
   c.params = {s.dhat, s.kappa};
   c.ccd = s.self_contact_ccd;
   c.eps_u = kFrictionEpsV * s.h;
+  caches.contact.pairs.clear();
+  caches.contact.friction.clear();
+  if (!(s.self_friction > 0.0)) return;  // Newton's begin and filters gather the candidates
   c.begin({sim.x, sim.mesh, sim.x, caches});
   lag_self_friction(*boundary, *c.rest, caches.contact.pairs, sim.x, c.params, s.self_friction,
                     caches.contact.friction);

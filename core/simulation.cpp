@@ -50,10 +50,17 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
       }
     }
   }
-  if (s.has_self_contact) {
-    // No two boundary edges intersect (exact), hence every node-edge distance is > 0.
+  if (s.self_contact_on()) {
+    // No two boundary edges intersect (exact), hence every node-edge distance is > 0. The
+    // clearance certificate proves it without the check while nothing came close since
+    // the last state measured; otherwise the exact check runs and measures this state.
     StepWorkspace& ws = *sim.workspace;
-    const SelfContactTimer timer{ws.caches.contact.ms};
+    SelfContactCache& cache = ws.caches.contact;
+    const SelfContactTimer timer{cache.ms};
+    const double m = clearance_motion(ws.boundary, cache.clearance, x, nullptr, 0.0);
+    if (is_clear(cache.clearance, s.dhat, m) ||
+        (near_pairs(ws.boundary, cache.clearance, s.dhat, m, cache.near) && cache.near.empty()))
+      return StepStatus::Ok;
     if (const auto hit = find_self_intersection(ws.boundary, x, ws.caches.grid, ws.edge_pairs)) {
       const auto& a = ws.boundary.edges[hit->edge_a];
       const auto& b = ws.boundary.edges[hit->edge_b];
@@ -61,6 +68,8 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
                  std::to_string(b[0]) + "-" + std::to_string(b[1]) + " intersect";
       return StepStatus::Intersected;
     }
+    measure_clearance(ws.boundary, sim.mesh.rest, x, {s.dhat, s.kappa}, ws.caches.grid,
+                      cache.clearance);
   }
   return StepStatus::Ok;
 }
@@ -68,7 +77,14 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
 // The boundary of every body, found once per mesh (the first step that needs it).
 const Boundary& boundary_of(Simulation& sim) {
   StepWorkspace& ws = *sim.workspace;
-  if (ws.boundary.edges.empty()) ws.boundary = find_boundary(sim.mesh);
+  if (ws.boundary.edges.empty()) {
+    ws.boundary = find_boundary(sim.mesh);
+    if (sim.scene.self_contact_on()) {
+      reserve_self_contact(ws.boundary, ws.caches.contact, ws.caches.grid);
+      ws.edge_pairs.reserve(8 * ws.boundary.edges.size());
+      ws.caches.scratch.resize(ws.z.size());  // path_step's direction
+    }
+  }
   return ws.boundary;
 }
 
@@ -77,7 +93,7 @@ const Boundary& boundary_of(Simulation& sim) {
 void fill_problem(Simulation& sim) {
   StepWorkspace& ws = *sim.workspace;
   const SceneDef& s = sim.scene;
-  const Boundary* boundary = s.has_self_contact ? &boundary_of(sim) : nullptr;
+  const Boundary* boundary = s.self_contact_on() ? &boundary_of(sim) : nullptr;
   if (s.integrator == Integrator::SymplecticEuler) boundary = nullptr;
   make_terms(sim, boundary, ws.problem, ws.caches);
 }
@@ -289,7 +305,7 @@ StepReport step(Simulation& sim) {
     sim.time += sim.scene.h;
     ++sim.step_count;
   }
-  if (sim.scene.has_self_contact) report.self_contact_ms = ws.caches.contact.ms;
+  if (sim.scene.self_contact_on()) report.self_contact_ms = ws.caches.contact.ms;
   report.wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return report;
@@ -313,7 +329,7 @@ double min_plane_gap(const Simulation& sim) {
 }
 
 double min_self_gap(const Simulation& sim) {
-  if (!sim.scene.has_self_contact || !sim.workspace) return INFINITY;
+  if (!sim.scene.self_contact_on() || !sim.workspace) return INFINITY;
   Boundary scratch;
   const Boundary& boundary = boundary_now(sim, scratch);
   std::vector<PointEdgePair> pairs;

@@ -32,9 +32,9 @@ namespace invfree::live {
 
 // The n_seg slider's maximum: the largest mesh that keeps the window at >= 30 frames/s on
 // the project's 2-core machine, otherwise idle, under Xvfb, with the self-contact checkbox
-// on as well as off (checked with `xvfb-run -a invfree live --frames 300 --bench --set
-// mesh.n_seg=N`, with and without `--set self_contact.enabled=true`). Larger meshes can
-// still be loaded from a scene file or --set, or allowed with --max-n-seg.
+// on (the default) as well as off (checked with `xvfb-run -a invfree live --frames 300
+// --bench --set mesh.n_seg=N`, with and without `--set self_contact.enabled=false`). Larger meshes
+// can still be loaded from a scene file or --set, or allowed with --max-n-seg.
 constexpr int kDefaultMaxSegments = 88;
 
 // The UI scale's range: the panel's text is 16 px times the scale, and the det F panel is

@@ -379,10 +379,18 @@ void contact_section(LiveController& lc, PanelState& ps) {
                      false))
     apply(lc, next);
   ImGui::EndDisabled();
-  // Switches the boundary's contact with itself (docs/method.md#self-contact): off, a fine
-  // mesh's folds pass through themselves; the class sees what the term prevents.
-  if (ImGui::Checkbox("self-contact (boundary against itself)", &next.has_self_contact))
+  // Switches the boundary's contact with itself (docs/method.md#self-contact), on by
+  // default: unticked, a fine mesh's folds pass through themselves and the class sees what
+  // the term prevents. Greyed out and unticked where it cannot run (springs, fixed nodes:
+  // self_contact_can_run).
+  const bool can_run = self_contact_can_run(next);
+  bool self_contact = next.self_contact_on();
+  ImGui::BeginDisabled(!can_run);
+  if (ImGui::Checkbox("self-contact (boundary against itself)", &self_contact) && can_run) {
+    next.has_self_contact = self_contact;
     apply(lc, next);
+  }
+  ImGui::EndDisabled();
   ImGui::BeginDisabled(!next.has_ceiling);
   double speed = -next.ceiling_velocity;
   if (clamped_slider(lc, ps, "ceiling speed (m/s)", "ceiling speed", &speed, kCeilingSpeedRange,

@@ -106,7 +106,7 @@ std::string method_model(const Method& method) {
 }
 
 std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps) {
-  if (method.self_contact_only && !scene.has_self_contact)
+  if (method.self_contact_only && !scene.self_contact_on())
     return "the scene has no self-contact, so nothing to take the CCD from";
   for (const char* o : method.overrides)
     if (std::string e = apply_override(scene, o); !e.empty()) return e;

@@ -38,8 +38,23 @@ void scatter_blocks(const std::vector<PointEdgeHessian>& blocks, SparseHessian& 
 
 }  // namespace
 
+void reserve_self_contact(const Boundary& boundary, SelfContactCache& cache, BroadPhaseGrid& grid) {
+  const size_t ne = boundary.edges.size(), nb = boundary.nodes.size();
+  grid.edge_boxes.reserve(ne);
+  grid.cell_start.reserve(12 * (ne + 1) + 2);  // at most 3 x 4 (ne + 1) + 1 cells
+  grid.cell_edges.reserve(16 * ne);
+  cache.pairs.reserve(16 * nb);
+  cache.near.reserve(16 * nb);
+  cache.clearance.pairs.reserve(32 * nb);
+  cache.clearance.pair_slack.reserve(32 * nb);
+  cache.clearance.at.resize(2 * static_cast<long>(nb));
+  cache.clearance.lo.resize(nb);
+  cache.clearance.hi.resize(nb);
+}
+
 double SelfContact::value(const TermPoint& at, double scale) const {
   SelfContactCache& cache = at.caches.contact;
+  if (cache.pairs.empty() && cache.friction.empty()) return 0.0;
   const SelfContactTimer timer{cache.ms};
   double e = self_contact_energy(*boundary, *rest, cache.pairs, at.z, params);
   if (!cache.friction.empty()) e += self_friction_energy(cache.friction, at.z, at.x_start, eps_u);
@@ -48,8 +63,9 @@ double SelfContact::value(const TermPoint& at, double scale) const {
 
 void SelfContact::add_derivatives(const TermPoint& at, double scale, Assembly& out) const {
   SelfContactCache& cache = at.caches.contact;
-  const SelfContactTimer timer{cache.ms};
   cache.hessians.clear();
+  if (cache.pairs.empty() && cache.friction.empty()) return;
+  const SelfContactTimer timer{cache.ms};
   add_self_contact_gradient_hessian(*boundary, *rest, cache.pairs, at.z, params, scale,
                                     out.gradient, cache.hessians);
   if (!cache.friction.empty())
@@ -67,23 +83,36 @@ double SelfContact::max_step(const TermPoint& at, const VecX& dir, double alpha)
   if (!(alpha > 0.0)) return alpha;
   SelfContactCache& cache = at.caches.contact;
   const SelfContactTimer timer{cache.ms};
-  swept_point_edge_candidates(*boundary, at.z, dir, alpha, params.dhat, at.caches.grid,
-                              cache.pairs);
-  if (!ccd) return alpha;
+  if (!clear_candidates(at, &dir, alpha))
+    swept_point_edge_candidates(*boundary, at.z, dir, alpha, params.dhat, at.caches.grid,
+                                cache.pairs);
+  if (!ccd || cache.pairs.empty()) return alpha;  // nothing within dhat: nothing to stop
   return self_contact_step(*boundary, cache.pairs, at.z, dir, alpha);
 }
 
 double SelfContact::path_step(const TermPoint& at, const VecX& trial) const {
   SelfContactCache& cache = at.caches.contact;
+  if (!ccd || cache.pairs.empty()) return 1.0;
   const SelfContactTimer timer{cache.ms};
-  if (!ccd) return 1.0;
   at.caches.scratch = trial - at.z;
   return self_contact_step(*boundary, cache.pairs, at.z, at.caches.scratch, 1.0);
 }
 
 void SelfContact::begin(const TermPoint& at) const {
-  const SelfContactTimer timer{at.caches.contact.ms};
-  point_edge_candidates(*boundary, at.z, params.dhat, at.caches.grid, at.caches.contact.pairs);
+  SelfContactCache& cache = at.caches.contact;
+  const SelfContactTimer timer{cache.ms};
+  if (!clear_candidates(at, nullptr, 0.0))
+    point_edge_candidates(*boundary, at.z, params.dhat, at.caches.grid, cache.pairs);
+}
+
+bool SelfContact::clear_candidates(const TermPoint& at, const VecX* dir, double alpha) const {
+  SelfContactCache& cache = at.caches.contact;
+  const double m = clearance_motion(*boundary, cache.clearance, at.z, dir, alpha);
+  if (is_clear(cache.clearance, params.dhat, m)) {
+    cache.pairs.clear();
+    return true;
+  }
+  return near_pairs(*boundary, cache.clearance, params.dhat, m, cache.pairs);
 }
 
 void SelfContact::add_energy_by_kind(const TermPoint& at, EnergyBins& bins) const {

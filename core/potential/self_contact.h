@@ -9,6 +9,11 @@
 // gradient and Hessian at the accepted point (inside those boxes). So the broad phase runs
 // once per Newton iteration, plus once at the start of a step (begin) for the starting
 // point. Pairs farther apart than dhat cost one distance evaluation.
+// While the clearance certificate (self_contact_clearance.h, measured on accepted states)
+// can answer for the motion asked about, begin and the filter take their candidates from
+// it instead of the broad phase: none where nothing can be within its dhat (then the CCD is
+// skipped too, and the value, derivatives and path_step of the empty list are answered
+// without work and untimed), otherwise the few measured pairs that may be.
 // The candidates, the lagged friction pairs, the Hessian blocks and the time spent live in
 // SelfContactCache (StepCaches::contact), which every call receives through TermPoint.
 // Inputs: the boundary and rest positions of every body (the per-pair dhat rule), the
@@ -20,6 +25,7 @@
 #include <vector>
 
 #include "potential/self_contact_barrier.h"
+#include "potential/self_contact_clearance.h"
 #include "potential/self_friction.h"
 #include "potential/term.h"
 
@@ -30,6 +36,10 @@ struct SelfContactCache {
   std::vector<PointEdgePair> pairs;        // the current candidates
   std::vector<SelfFrictionPair> friction;  // lagged at x^n
   std::vector<PointEdgeHessian> hessians;  // of the last gradient/Hessian evaluation
+  // Kept across steps: nothing close since the last accepted state measured
+  // (self_contact_clearance.h); the step's invariant check measures it again.
+  SelfContactClearance clearance;
+  std::vector<PointEdgePair> near;  // the invariant check's near pairs (scratch)
   // Steady-clock time spent in the term (a step): its broad phase, CCD, energy, derivatives
   // and the step's intersection check.
   double ms = 0.0;
@@ -44,6 +54,11 @@ struct SelfContactTimer {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 };
+
+// Room for what the broad phase, the candidates and the clearance's measurement usually
+// need on this boundary, so that steps allocate nothing once the run has started (the grid's
+// cells exactly; the lists for a few dozen pairs a node; they still grow if a fold needs more).
+void reserve_self_contact(const Boundary& boundary, SelfContactCache& cache, BroadPhaseGrid& grid);
 
 struct SelfContact {
   static constexpr EnergyKind kind = EnergyKind::Contact;
@@ -68,6 +83,9 @@ struct SelfContact {
   void begin(const TermPoint& at) const;
   // The barrier as Contact, the friction as Friction, over the current candidates.
   void add_energy_by_kind(const TermPoint& at, EnergyBins& bins) const;
+  // The candidates of the motion z -> z + alpha dir (dir null: the point z) from the
+  // clearance certificate alone, when it can answer (true): none, or its near pairs.
+  bool clear_candidates(const TermPoint& at, const VecX* dir, double alpha) const;
 };
 
 }  // namespace invfree

@@ -62,12 +62,12 @@ VecX initial_velocities(const SceneDef& scene, const Mesh& mesh) {
 }
 
 namespace {
-// With self-contact on, bodies must start apart: each pair's bounding boxes at t = 0 may
-// not touch (the squares are axis-aligned at rest, so this is their overlap test, made a
-// little stricter by jitter), since contact needs a positive distance from the start.
+// With self-contact on (the default), bodies must start apart: each pair's bounding boxes at t = 0
+// may not touch (the squares are axis-aligned at rest, so this is their overlap test, made a little
+// stricter by jitter), since contact needs a positive distance from the start.
 std::optional<SceneProblem> overlapping_bodies(const SceneDef& s, const Mesh& mesh, const VecX& x) {
   const int bodies = static_cast<int>(mesh.body_begin.size());
-  if (!s.has_self_contact || bodies < 2) return std::nullopt;
+  if (!s.self_contact_on() || bodies < 2) return std::nullopt;
   std::vector<Eigen::AlignedBox2d> box(bodies);
   for (int i = 0; i < mesh.node_count(); ++i)
     box[body_of_node(mesh, i)].extend(Vec2(x.segment<2>(2 * i)));
@@ -76,7 +76,9 @@ std::optional<SceneProblem> overlapping_bodies(const SceneDef& s, const Mesh& me
       if (box[a].intersects(box[b]))
         return SceneProblem{"body.offset",
                             "[[body]] " + std::to_string(b + 1) + " touches or overlaps [[body]] " +
-                                std::to_string(a + 1) + " at t = 0 (self-contact needs them apart)",
+                                std::to_string(a + 1) +
+                                " at t = 0 (self-contact, on by default, needs them apart; "
+                                "self_contact.enabled = false lets them overlap)",
                             {"self_contact.enabled", "mesh.side", "mesh.n_seg"}};
   return std::nullopt;
 }

@@ -81,6 +81,18 @@ double load_factor(const SceneDef& s, long step) {
   return step >= s.ramp_steps ? 1.0 : double(step) / double(s.ramp_steps);
 }
 
+bool self_contact_can_run(const SceneDef& s) {
+  return !s.has_mass_spring && !s.has_fixed;
+}
+
+bool self_contact_by_default(const SceneDef& s) {
+  return self_contact_can_run(s) && s.integrator != Integrator::SymplecticEuler;
+}
+
+bool SceneDef::self_contact_on() const {
+  return has_self_contact && self_contact_can_run(*this);
+}
+
 int body_count(const SceneDef& s) {
   return s.bodies.empty() ? 1 : static_cast<int>(s.bodies.size());
 }
@@ -251,22 +263,11 @@ std::optional<SceneProblem> find_scene_problem(const SceneDef& s) {
     if (s.ceiling_stop <= s.ground_y)
       return SceneProblem{"ceiling.stop", "must be above ground.y", planes};
   }
-  // Self-contact rebuilds the Hessian's pattern when a contact needs new blocks; the
-  // springs' and the fixed nodes' precomputed slots into it would then be stale.
-  if (s.has_self_contact && s.has_mass_spring)
-    return SceneProblem{
-        "self_contact.enabled",
-        "is not available with [mass_spring] (springs need a fixed Hessian pattern)",
-        {"mass_spring.enabled"}};
   if (s.is_static() && s.linear_solver == LinearSolverKind::Pcg)
     return SceneProblem{"solver.linear_solver",
                         "\"pcg\" needs inertia's lower bound of the Hessian, which a static "
                         "step has not (use \"auto\", \"ldlt\" or \"cholmod\")",
                         {"solver.integrator"}};
-  if (s.has_self_contact && s.has_fixed)
-    return SceneProblem{"self_contact.enabled",
-                        "is not available with [fixed] (fixed nodes need a fixed Hessian pattern)",
-                        {"fixed.enabled"}};
   return check_initial_state(s);
 }
 

@@ -215,7 +215,9 @@ struct SceneDef {
   Vec2 initial_stretch = Vec2(1.0, 1.0);
   // [self_contact]: IPC point-edge barrier between boundary nodes and edges of every body
   // (potential/self_contact_barrier.h), CCD in the line search, the intersection invariant.
-  bool has_self_contact = false;
+  // On by default (SceneDef{}; a scene file without the section: self_contact_by_default);
+  // `enabled = false` switches it off. It runs where it can: self_contact_on() below.
+  bool has_self_contact = true;
   double self_friction = 0.0;    // point-edge friction coefficient (potential/self_friction.h)
   bool self_contact_ccd = true;  // false: the line search's CCD filter is off (a study row)
   // [reduced]: the subspace of Newton's steps; `order` 1-3 of the polynomial basis (1:
@@ -235,12 +237,23 @@ struct SceneDef {
   double contact_area() const;
   bool has_contact() const { return has_ground || has_ceiling; }
   bool has_tractions() const { return !tractions.empty(); }
+  // Self-contact runs in this scene's steps: asked for and able to (self_contact_can_run).
+  // With symplectic Euler that is the intersection invariant alone (no contact force).
+  bool self_contact_on() const;
   bool is_static() const { return integrator == Integrator::Static; }
   // The triangles' elasticity (material.*) is a term of this scene's potential.
   bool has_triangle_elasticity() const { return !has_mass_spring; }
 };
 
 int body_count(const SceneDef& s);  // 1 without [[body]] tables
+// Self-contact can run in this scene: not with [mass_spring] or [fixed] (their precomputed
+// slots need the fixed Hessian pattern that contact grows). A scene file or --set that asks
+// for it there is refused (scene_io); a term switched on later leaves it inactive.
+bool self_contact_can_run(const SceneDef& s);
+// Its default in a scene file without [self_contact]: on where it can run, except with
+// symplectic Euler, which has no contact force (its invariant alone would stop a run that
+// passes through itself, where such a scene ran on before self-contact was on by default).
+bool self_contact_by_default(const SceneDef& s);
 // The fraction of the loads step `step` (1-based) applies: min(1, step / ramp_steps).
 double load_factor(const SceneDef& s, long step);
 PlacedBody placed_body(const SceneDef& s, int body);

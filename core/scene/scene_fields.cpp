@@ -217,7 +217,9 @@ constexpr SceneSection kSections[] = {
     {"fixed", &SceneDef::has_fixed,
      "nodes held at their initial positions, chosen in rest space; no section, none"},
     {"self_contact", &SceneDef::has_self_contact,
-     "IPC contact of the boundary with itself (docs/method.md); no section, none"},
+     "IPC contact of the boundary with itself (docs/method.md); on by default, also with no "
+     "section, except with [mass_spring] or [fixed] (there `enabled = true` is refused) and "
+     "symplectic Euler (there only its intersection check would run)"},
     {"modes", nullptr, "`invfree modes`: the linear modal analysis of the scene (docs/modes.md)"},
     {"reduced", nullptr,
      "Newton's steps in a subspace x = x0 + B q (the course's chapter 9, "

@@ -59,6 +59,17 @@ struct Blame {
   std::string key;
   std::string message;
 };
+// Self-contact asked for where it cannot run (self_contact_can_run): why, or none.
+std::optional<SceneProblem> self_contact_refusal(const SceneDef& s) {
+  if (!s.has_self_contact || self_contact_can_run(s)) return std::nullopt;
+  const std::string key = "self_contact.enabled";
+  if (s.has_mass_spring)
+    return SceneProblem{
+        key, "is not available with [mass_spring] (springs need a fixed Hessian pattern)", {}};
+  return SceneProblem{
+      key, "is not available with [fixed] (fixed nodes need a fixed Hessian pattern)", {}};
+}
+
 template <class Written>
 Blame blame(const SceneProblem& p, Written written) {
   if (!written(p.key))
@@ -130,8 +141,12 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   if (const LineError e = parse_toml(text, source, root); !e.what.empty())
     return fail(e.line, e.what);
   SceneDef s;
+  // Switched on by their sections; self-contact, on by default, is decided once every
+  // other section is read: a file without [self_contact] gets self_contact_by_default, and
+  // one that asks for it where it cannot run is refused.
   for (const auto& section : scene_sections())
-    if (section.term) s.*(section.term) = false;  // switched on by their sections
+    if (section.term && section.term != &SceneDef::has_self_contact) s.*(section.term) = false;
+  int self_contact_line = 0;                      // of [self_contact]; 0: none
   {                                               // name defaults to the file's stem
     std::string stem = source.substr(source.find_last_of('/') + 1);
     s.name = stem.substr(0, stem.rfind('.'));
@@ -173,9 +188,11 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
       return fail(line,
                   k + ": expected a [" + k + "] section, got " + scene_io::toml_type_name(node));
     if (section->term) s.*(section->term) = true;
+    if (section->term == &SceneDef::has_self_contact) self_contact_line = line;
     if (const LineError e = read_section(k, *table, s, material, lines); !e.what.empty())
       return fail(e.line, e.what);
   }
+  if (self_contact_line == 0) s.has_self_contact = self_contact_by_default(s);
   auto line_of = [&](const std::string& key) {
     const auto it = lines.find(key);
     return it == lines.end() ? 0 : it->second;
@@ -192,6 +209,10 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   if (const auto problem = find_scene_problem(s)) {
     const Blame b = blame(*problem, [&](const std::string& key) { return lines.count(key) > 0; });
     return fail(line_of(b.key), b.message);
+  }
+  if (const auto problem = self_contact_refusal(s)) {
+    const int line = line_of("self_contact.enabled");
+    return fail(line > 0 ? line : self_contact_line, problem->key + ": " + problem->reason);
   }
   return {std::move(s), ""};
 }
@@ -277,6 +298,11 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   MaterialInput material;
   if (auto r = apply_key(candidate, *spec, *parsed.get("v"), material); !r.empty())
     return where + ": " + lhs + ": " + r;
+  // Asking for self-contact where it cannot run is refused; another key that makes it
+  // unable to ([mass_spring], [fixed]) leaves it inactive.
+  if (section == "self_contact")
+    if (const auto problem = self_contact_refusal(candidate))
+      return where + ": " + problem->key + ": " + problem->reason;
   if (auto r = apply_material(candidate, material); !r.empty()) return where + ": " + r;
   // A new file, path, scale or shape is read now, relative to the current directory (the
   // scene's own files were resolved when it was loaded).
@@ -291,13 +317,17 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
 
 std::string scene_to_toml(const SceneDef& s) {
   // Every key the scene keeps is written, and a switched-off term keeps its values under
-  // `enabled = false`, so that parsing the text gives back exactly this scene.
+  // `enabled = false`, so that parsing the text gives back exactly this scene. Self-contact
+  // writes whether it runs (self_contact_on): asked for where it cannot, it is inactive,
+  // and the file says so rather than ask for what its reader would refuse.
   std::string out = "name = " + scene_io::toml_string(s.name) + "\n";
+  SceneDef written = s;
+  written.has_self_contact = s.self_contact_on();
   for (const auto& section : scene_sections()) {
     out += "\n[" + std::string(section.name) + "]\n";
     for (const auto& k : scene_fields())
       if (k.kept && std::string_view(k.section) == section.name)
-        out += std::string(k.key) + " = " + scene_io::write_field(k, s) + "\n";
+        out += std::string(k.key) + " = " + scene_io::write_field(k, written) + "\n";
   }
   return out + scene_io::body_tables_to_toml(s) + scene_io::traction_tables_to_toml(s);
 }

@@ -35,9 +35,10 @@ TEST(Cli, SimulateWritesCsvAndObj) {
   std::istringstream csv(slurp(dir + "/c.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line,
-            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,"
-            "ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms");
+  EXPECT_EQ(
+      line,
+      "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,"
+      "ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,self_intersecting,wall_ms");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, 5);
@@ -55,6 +56,57 @@ TEST(Cli, SimulateWritesCsvAndObj) {
   EXPECT_EQ(v, 25);
   EXPECT_EQ(f, 32);
   EXPECT_NE(slurp(dir + "/obj/0.obj").find("f 1 6 7\n"), std::string::npos);  // 1-based
+}
+
+// The CSV's self_intersecting column (the one before wall_ms, the last) of every row.
+std::vector<int> self_intersecting_column(const std::string& path) {
+  std::istringstream csv(slurp(path));
+  std::string line;
+  std::getline(csv, line);
+  std::vector<int> flags;
+  while (std::getline(csv, line)) {
+    const std::string head = line.substr(0, line.rfind(','));
+    flags.push_back(std::stoi(head.substr(head.rfind(',') + 1)));
+  }
+  return flags;
+}
+
+// Switched off, self-contact lets the fold at n_seg 64 pass through itself (between steps
+// 200 and 300): simulate says so once on stderr, naming the step and the edges, and the
+// CSV flags that step and the crossing ones after it. A run without a crossing says nothing.
+TEST(Cli, SimulateWarnsOnceWhenTheBoundaryCrossesItselfWithoutSelfContact) {
+  const std::string dir = ::testing::TempDir() + "/cli_cross_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  const CommandResult r =
+      run("simulate --scene compress --set mesh.n_seg=64 --set "
+          "self_contact.enabled=false --steps 300 --csv " +
+          dir + "/off.csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  size_t count = 0;
+  for (size_t at = r.err.find("warning"); at != std::string::npos;
+       at = r.err.find("warning", at + 1))
+    ++count;
+  EXPECT_EQ(count, 1u) << r.err;
+  const size_t step_at = r.err.find("invfree: warning: step ");
+  ASSERT_NE(step_at, std::string::npos) << r.err;
+  const int warned_step = std::stoi(r.err.substr(step_at + 23));
+  EXPECT_NE(r.err.find(": boundary edges "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("without self-contact"), std::string::npos) << r.err;
+  const std::vector<int> flags = self_intersecting_column(dir + "/off.csv");
+  ASSERT_EQ(flags.size(), 300u);
+  const auto first = std::find(flags.begin(), flags.end(), 1);
+  ASSERT_NE(first, flags.end()) << "no row flagged";
+  EXPECT_EQ(first - flags.begin() + 1, warned_step);
+  EXPECT_GT(warned_step, 150);
+  // A run that does not cross itself (the coarse default): no warning, no flag.
+  const CommandResult quiet =
+      run("simulate --scene compress --set self_contact.enabled=false "
+          "--steps 300 --csv " +
+          dir + "/coarse.csv");
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  for (int flag : self_intersecting_column(dir + "/coarse.csv")) EXPECT_EQ(flag, 0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, AShapeAndItsKeysInAnyOrder) {
@@ -320,9 +372,10 @@ TEST(Cli, StepFailureNamesTheStepAndKeepsCompleteOutput) {
   // The outputs describe the steps that succeeded: the initial mesh and an empty table.
   EXPECT_TRUE(std::filesystem::exists(dir + "/obj/0.obj"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/obj/1.obj"));
-  EXPECT_EQ(slurp(dir + "/run.csv"),
-            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,"
-            "ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n");
+  EXPECT_EQ(
+      slurp(dir + "/run.csv"),
+      "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,"
+      "ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,self_intersecting,wall_ms\n");
   std::filesystem::remove_all(dir);
 }
 

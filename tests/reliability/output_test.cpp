@@ -103,8 +103,10 @@ TEST(FullDisk, FileSizeLimit) {
             std::string::npos)
       << r.err;
   EXPECT_EQ(expect_only_complete_objs(dir + "/obj", 289, 512), 0);
-  EXPECT_EQ(slurp(dir + "/kept.csv"),
-            "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n");
+  EXPECT_EQ(
+      slurp(dir + "/kept.csv"),
+      "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,"
+      "kinetic,elastic,gravitational,contact,min_self_gap,self_intersecting,wall_ms\n");
   // A CSV that outgrows the limit: no table under its final name, no temporary left.
   r = run_invfree({"simulate", "--steps", "2000", "--csv", dir + "/run.csv"}, {}, "ulimit -f 16;");
   EXPECT_EQ(r.code, 4) << r.err;

@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 using namespace test;
 
 const std::string kCsvHeader =
-    "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,kinetic,elastic,gravitational,contact,min_self_gap,wall_ms\n";
+    "step,t,newton_iters,residual,incremental_potential,min_det_F,max_det_F,min_gap,ceiling_y,"
+    "kinetic,elastic,gravitational,contact,min_self_gap,self_intersecting,wall_ms\n";
 
 // A signal sent before the command's main has run: the child starts with it blocked, so
 // it is pending when main starts, however fast this test is. The command must handle it

@@ -143,11 +143,16 @@ TEST(BodyTables, BodiesThatOverlapAtTheStartAreRefusedWithSelfContact) {
       "0.1]\n";
   EXPECT_EQ(error_of(overlap),
             "bad.toml:7: body.offset: [[body]] 2 touches or overlaps [[body]] 1 at t = 0 "
-            "(self-contact needs them apart)");
-  // Without self-contact the bodies do not see each other and may overlap.
-  const std::string apart = overlap.substr(0, overlap.find("[self_contact]\n")) +
-                            overlap.substr(overlap.find("[[body]]"));
-  const SceneLoad load = parse_scene_toml(apart, "apart.toml");
+            "(self-contact, on by default, needs them apart; self_contact.enabled = false lets "
+            "them overlap)");
+  // Self-contact is on without the section too.
+  const std::string unsaid = overlap.substr(0, overlap.find("[self_contact]\n")) +
+                             overlap.substr(overlap.find("[[body]]"));
+  EXPECT_NE(error_of(unsaid).find("needs them apart"), std::string::npos);
+  // Switched off, the bodies do not see each other and may overlap.
+  const std::string off = overlap.substr(0, overlap.find("[[body]]")) + "enabled = false\n" +
+                          overlap.substr(overlap.find("[[body]]"));
+  const SceneLoad load = parse_scene_toml(off, "off.toml");
   EXPECT_TRUE(load.scene) << load.error;
 }
 
