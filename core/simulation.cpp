@@ -53,14 +53,19 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
   if (s.self_contact_on()) {
     // No two boundary edges intersect (exact), hence every node-edge distance is > 0. The
     // clearance certificate proves it without the check while nothing came close since
-    // the last state measured; otherwise the exact check runs and measures this state.
+    // the state it measured; once it only proves it pair by pair, this state is measured
+    // anew (intersection-free by that proof), so that the next steps take the quick path;
+    // otherwise the exact check runs, and then the measurement.
     StepWorkspace& ws = *sim.workspace;
     SelfContactCache& cache = ws.caches.contact;
     const SelfContactTimer timer{cache.ms};
     const double m = clearance_motion(ws.boundary, cache.clearance, x, nullptr, 0.0);
-    if (is_clear(cache.clearance, s.dhat, m) ||
-        (near_pairs(ws.boundary, cache.clearance, s.dhat, m, cache.near) && cache.near.empty()))
+    if (is_clear(cache.clearance, s.dhat, m)) return StepStatus::Ok;
+    if (near_pairs(ws.boundary, cache.clearance, s.dhat, m, cache.near) && cache.near.empty()) {
+      measure_clearance(ws.boundary, sim.mesh.rest, x, {s.dhat, s.kappa}, ws.caches.grid,
+                        cache.clearance);
       return StepStatus::Ok;
+    }
     if (const auto hit = find_self_intersection(ws.boundary, x, ws.caches.grid, ws.edge_pairs)) {
       const auto& a = ws.boundary.edges[hit->edge_a];
       const auto& b = ws.boundary.edges[hit->edge_b];

@@ -51,32 +51,45 @@ double clearance_motion(const Boundary& boundary, SelfContactClearance& c, const
                         const VecX* p, double alpha) {
   const int nb = boundary.node_count();
   if (c.at.size() != 2 * nb || !(c.slack > -INFINITY)) return INFINITY;
-  c.lo.resize(nb);
-  c.hi.resize(nb);
-  // Each node's displacement box; their common translation t: the mid-range of all.
+  // The displacements' box over the whole motion; t, their common translation, its middle.
+  const auto ends = [&](int k, Vec2& a, Vec2& b) {
+    const int i = boundary.nodes[k];
+    a = z.segment<2>(2 * i) - c.at.segment<2>(2 * k);
+    b = p ? Vec2(a + alpha * p->segment<2>(2 * i)) : a;
+  };
   Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
   for (int k = 0; k < nb; ++k) {
-    const int i = boundary.nodes[k];
-    const Vec2 a = z.segment<2>(2 * i) - c.at.segment<2>(2 * k);
-    const Vec2 b = p ? Vec2(a + alpha * p->segment<2>(2 * i)) : a;
-    c.lo[k] = a.cwiseMin(b);
-    c.hi[k] = a.cwiseMax(b);
-    lo = lo.cwiseMin(c.lo[k]);
-    hi = hi.cwiseMax(c.hi[k]);
+    Vec2 a, b;
+    ends(k, a, b);
+    lo = lo.cwiseMin(a).cwiseMin(b);
+    hi = hi.cwiseMax(a).cwiseMax(b);
   }
   if (!lo.allFinite() || !hi.allFinite()) return INFINITY;
+  // Every displacement is within half that box's diagonal of t: enough where the motion is
+  // small (the usual case, nothing close), and then no node's own box is needed.
+  const double quick = 0.5 * (hi - lo).norm();
+  if (2.0 * quick + c.margin < c.slack) return quick;
+  // Otherwise each node's box (near_pairs reads them), and its farthest corner from t.
   const Vec2 t = 0.5 * (lo + hi);
-  // Every point of a box is within its farthest corner's distance of t.
+  c.lo.resize(nb);
+  c.hi.resize(nb);
   double m2 = 0.0;
-  for (int k = 0; k < nb; ++k)
+  for (int k = 0; k < nb; ++k) {
+    Vec2 a, b;
+    ends(k, a, b);
+    c.lo[k] = a.cwiseMin(b);
+    c.hi[k] = a.cwiseMax(b);
     m2 = std::max(m2, (c.lo[k] - t).cwiseAbs().cwiseMax((c.hi[k] - t).cwiseAbs()).squaredNorm());
+  }
   return std::sqrt(m2);
 }
 
 bool near_pairs(const Boundary& boundary, const SelfContactClearance& c, double dhat, double m,
                 std::vector<PointEdgePair>& out) {
   out.clear();
-  if (c.dhat != dhat || !(2.0 * m + c.margin < c.far)) return false;
+  if (c.dhat != dhat || !(2.0 * m + c.margin < c.far) ||
+      c.lo.size() != static_cast<size_t>(boundary.node_count()))
+    return false;
   // The largest distance between a point of box j and a point of box k, squared.
   const auto apart2 = [&](int j, int k) {
     return (c.hi[j] - c.lo[k]).cwiseAbs().cwiseMax((c.lo[j] - c.hi[k]).cwiseAbs()).squaredNorm();

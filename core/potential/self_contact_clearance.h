@@ -53,9 +53,11 @@ void measure_clearance(const Boundary& boundary, const std::vector<Vec2>& rest, 
                        const SelfContactParams& params, BroadPhaseGrid& grid,
                        SelfContactClearance& out);
 
-// The motion z -> z + alpha p (p null: the point z) since the measurement: each node's
-// displacement box (kept in c), and the largest distance of any point of them from the
-// boxes' common mid-range, m. +infinity when nothing was measured.
+// The motion z -> z + alpha p (p null: the point z) since the measurement: a bound m on
+// how far any point of the nodes' displacement boxes lies from their common mid-range t:
+// half the diagonal of all of them where that is enough for is_clear, otherwise the
+// farthest corner of any node's box (then kept in c for near_pairs). +infinity when
+// nothing was measured.
 double clearance_motion(const Boundary& boundary, SelfContactClearance& c, const VecX& z,
                         const VecX* p, double alpha);
 
@@ -64,9 +66,9 @@ inline bool is_clear(const SelfContactClearance& c, double dhat, double m) {
   return c.dhat == dhat && 2.0 * m + c.margin < c.slack;
 }
 
-// After clearance_motion (m its result): when the listed pairs answer for every pair
-// (2 m < far), `out` = those of them that may come within their dhat on that motion, sorted,
-// and true; false when the broad phase must run.
+// After clearance_motion (m its result) where is_clear is not: when the listed pairs answer
+// for every pair (2 m < far), `out` = those of them that may come within their dhat on that
+// motion, sorted, and true; false when the broad phase must run.
 bool near_pairs(const Boundary& boundary, const SelfContactClearance& c, double dhat, double m,
                 std::vector<PointEdgePair>& out);
 

@@ -1,4 +1,5 @@
-// How sensitive a stretch of a run is to rounding: runs `compress` at n_seg to step
+// How sensitive a stretch of a run is to rounding: runs `compress` (self-contact switched
+// off: the loops of docs/performance.md's fold section) at n_seg to step
 // `from`, keeps the state (positions, velocities, ceiling, its penalty stiffness), and
 // restarts from it once as it is and once per perturbation size eps (every coordinate
 // moved by at most eps / 2, a fixed pseudo-random pattern), each time up to step `to`,
@@ -68,6 +69,7 @@ int main(int argc, char** argv) {
 
   SceneDef scene = *load_builtin_scene("compress").scene;
   scene.n_seg = n_seg;
+  scene.has_self_contact = false;  // the loops it studies form only without self-contact
   if (const std::string error = validate_scene(scene); !error.empty()) {
     std::fprintf(stderr, "n_seg %d: %s\n", n_seg, error.c_str());
     return 2;

@@ -113,7 +113,7 @@ void expect_identical_with_and_without(SceneDef scene, int steps, const std::str
 }
 
 TEST(SelfContactDefault, TheLectureDemoIsBitIdenticalWithAndWithout) {
-  for (int n_seg : {4, 8}) {
+  for (int n_seg : {4, 8, 16}) {
     SceneDef s = builtin("compress");
     s.n_seg = n_seg;
     expect_identical_with_and_without(s, 300, "compress n_seg " + std::to_string(n_seg));
