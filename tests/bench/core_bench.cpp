@@ -138,6 +138,19 @@ void BM_Energy(benchmark::State& state) {
 }
 BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 
+// compress's Hessian at n_seg after its first step (the pattern and values the solver
+// factorises).
+Eigen::SparseMatrix<double> compress_hessian(int n_seg) {
+  SceneDef scene = *load_builtin_scene("compress").scene;
+  scene.n_seg = n_seg;
+  Simulation sim = make_simulation(scene);
+  step(sim);
+  VecX g;
+  ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, state_of(sim), g,
+                      sim.workspace->newton.hessian);
+  return sim.workspace->newton.hessian.matrix;
+}
+
 // One forward + backward solve with the LDL^T factor of the projected Hessian after one
 // step (the solver's ordering and split): the kernel PCG repeats once per iteration. A
 // solve's work and memory traffic depend on the pattern alone, not on the values, so
@@ -147,13 +160,7 @@ BENCHMARK(BM_Energy)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 // float:1 reads L rounded to float, as PCG does from kFloatPreconditionerMinEntries (pcg.h).
 // Items: entries of L.
 void BM_LdltSolve(benchmark::State& state) {
-  SceneDef scene = *load_builtin_scene("compress").scene;
-  scene.n_seg = static_cast<int>(state.range(0));
-  Simulation sim = make_simulation(scene);
-  step(sim);
-  VecX g;
-  ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, state_of(sim), g, sim.workspace->newton.hessian);
-  const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
+  const Eigen::SparseMatrix<double> h = compress_hessian(static_cast<int>(state.range(0)));
   SparseLdlt ldlt;
   analyze_like_the_solver(h, ldlt);  // METIS from 5,000 unknowns, as in the solver
   if (!ldlt.factorize(h)) {
@@ -189,14 +196,7 @@ BENCHMARK(BM_LdltSolve)
 // One numeric factorisation of the same Hessian (PCG renews its factor about once in ten
 // steps; the direct solvers once per Newton iteration).
 void BM_LdltFactorize(benchmark::State& state) {
-  SceneDef scene = *load_builtin_scene("compress").scene;
-  scene.n_seg = static_cast<int>(state.range(0));
-  Simulation sim = make_simulation(scene);
-  step(sim);
-  VecX g;
-  ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, state_of(sim), g,
-                      sim.workspace->newton.hessian);
-  const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
+  const Eigen::SparseMatrix<double> h = compress_hessian(static_cast<int>(state.range(0)));
   SparseLdlt ldlt;
   analyze_like_the_solver(h, ldlt);
   for (auto _ : state)
@@ -210,14 +210,7 @@ BENCHMARK(BM_LdltFactorize)->Arg(64)->Arg(128)->Arg(256)->ArgName("n_seg")->Unit
 
 // CHOLMOD's supernodal factorisation of the same Hessian (the `cholmod` solver).
 void BM_CholmodFactorize(benchmark::State& state) {
-  SceneDef scene = *load_builtin_scene("compress").scene;
-  scene.n_seg = static_cast<int>(state.range(0));
-  Simulation sim = make_simulation(scene);
-  step(sim);
-  VecX g;
-  ip_gradient_hessian(sim.workspace->problem, sim.workspace->caches, state_of(sim), g,
-                      sim.workspace->newton.hessian);
-  const Eigen::SparseMatrix<double>& h = sim.workspace->newton.hessian.matrix;
+  const Eigen::SparseMatrix<double> h = compress_hessian(static_cast<int>(state.range(0)));
   CholmodBackend chol;
   if (!chol.analyze(h)) {
     state.SkipWithError("no CHOLMOD");
