@@ -43,6 +43,7 @@ struct LinearSolver::Impl {
 
   bool solve(const SpMat& h, const VecX& b, VecX& x, const SolveRequest& request,
              LinearSolveStats& stats) {
+    if (backend != Backend::PcgLdlt && !request.couplings.empty()) return false;
     switch (backend) {
       case Backend::Ldlt:
         if (!factorize(h, stats)) return false;
@@ -57,6 +58,10 @@ struct LinearSolver::Impl {
     return false;
   }
 };
+
+bool solves_by_pcg(LinearSolverKind kind, bool positive_definite) {
+  return kind == LinearSolverKind::Pcg || (kind == LinearSolverKind::Auto && positive_definite);
+}
 
 LinearSolver::LinearSolver() = default;
 LinearSolver::~LinearSolver() = default;
@@ -79,11 +84,9 @@ void LinearSolver::setup(const SpMat& pattern, LinearSolverKind kind, bool posit
       s.backend = s.chol.analyze(pattern) ? Backend::Cholmod : Backend::Ldlt;
       break;
     case LinearSolverKind::Pcg:
-      s.backend = Backend::PcgLdlt;
-      break;
     case LinearSolverKind::Auto:
     default:
-      s.backend = positive_definite ? Backend::PcgLdlt : Backend::Ldlt;
+      s.backend = solves_by_pcg(kind, positive_definite) ? Backend::PcgLdlt : Backend::Ldlt;
       break;
   }
   if (s.backend == Backend::Cholmod) return;

@@ -8,7 +8,9 @@
 //  - pcg+ldlt (pcg.h): PCG preconditioned by a reused LDL^T factorisation, which stops
 //    when Newton's stopping test would decide as with the exact solution (pcg.h gives the
 //    rules and the bound); the direct solve is always its fallback.
-// The symbolic analysis is done once per pattern; a factorisation is numeric only.
+// The symbolic analysis is done once per pattern; a factorisation is numeric only. PCG
+// also takes couplings outside the pattern (SolveRequest::couplings), so contacts never
+// change its pattern.
 //
 // No allocation after `setup`: every buffer is sized there, CHOLMOD's workspace is
 // recycled by a size-keyed pool (cholmod_backend.cpp), and the LDL^T's scratch is sized by
@@ -17,8 +19,10 @@
 
 #include <Eigen/SparseCore>
 #include <memory>
+#include <span>
 
 #include "linalg/linear_solver_kind.h"
+#include "linalg/node_coupling.h"
 #include "types.h"
 
 namespace invfree {
@@ -37,7 +41,15 @@ struct SolveRequest {
   double forcing = 1e-1;  // relative model decrease of the last CG step, for a direction that will
                           // not stop Newton (Newton's default, core/solver/newton.h); the
                           // rules that use these three: pcg.h
+  // H's 2x2 blocks outside the pattern (SparseHessian::couplings): H = h + couplings. Only
+  // the PCG backend takes them (solves_by_pcg); a direct backend refuses a nonempty list
+  // (solve returns false).
+  std::span<const NodeCoupling> couplings;
 };
+
+// True when LinearSolver::setup(pattern, kind, positive_definite) picks the PCG backend,
+// the one that takes couplings outside the pattern.
+bool solves_by_pcg(LinearSolverKind kind, bool positive_definite);
 
 class LinearSolver {
  public:

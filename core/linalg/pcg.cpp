@@ -15,8 +15,9 @@ using SpMat = Eigen::SparseMatrix<double>;
 
 namespace {
 
-// y = H v (H in full symmetric storage, so column i is row i) and v.y, in fixed blocks.
-double multiply(const SpMat& h, const VecX& v, VecX& y) {
+// y = H v (H in full symmetric storage, so column i is row i, plus the couplings outside
+// its pattern) and v.y, in fixed blocks, then the couplings in list order.
+double multiply(const SpMat& h, std::span<const NodeCoupling> couplings, const VecX& v, VecX& y) {
   const int n = static_cast<int>(h.rows());
   const int* outer = h.outerIndexPtr();
   const int* inner = h.innerIndexPtr();
@@ -35,6 +36,7 @@ double multiply(const SpMat& h, const VecX& v, VecX& y) {
   });
   double dot = 0.0;
   for (int b = 0; b < blocks.blocks; ++b) dot += partial[b];
+  if (!couplings.empty()) dot += add_couplings_product(couplings, v, y);
   return dot;
 }
 
@@ -64,6 +66,7 @@ void ReusedFactorPcg::setup(const SpMat& pattern, SparseLdlt& factor) {
   const int block_size = std::max(64, n / 8);
   block_.reserve(n, block_size, 32L * block_size);
   block_x_.resize(n);  // S r on the block, or on C for the fallback
+  scattered_.setZero(n);
   smoother_.resize(n);
 }
 
@@ -130,6 +133,14 @@ void ReusedFactorPcg::prepare_correction(const SpMat& h) {
       is_changed_[i] = 1;
     }
   }
+  // The couplings outside the pattern are never in the factor: their nodes are always in C
+  // (each coupling is listed in both orientations, so its row nodes are all of them).
+  for (const NodeCoupling& c : couplings_)
+    for (int i : {2 * c.row_node, 2 * c.row_node + 1})
+      if (is_changed_[i] != 1) {
+        changed_.push_back(i);
+        is_changed_[i] = 1;
+      }
   if (changed_.empty()) return;
   // D: C and its neighbours (is_changed_ 2), up to the block's capacity.
   block_set_ = changed_;
@@ -142,7 +153,7 @@ void ReusedFactorPcg::prepare_correction(const SpMat& h) {
         block_set_.push_back(inner[k]);
       }
   }
-  use_block_ = block_set_.size() <= capacity && block_.factorize(h, block_set_);
+  use_block_ = block_set_.size() <= capacity && block_.factorize(h, couplings_, block_set_);
   if (!use_block_) jacobi_fallback(h);
 }
 
@@ -161,8 +172,17 @@ void ReusedFactorPcg::jacobi_fallback(const SpMat& h) {
       const int j = inner[k];
       if (j != i && is_changed_[j] == 1) radius += std::abs(v[k]) / std::sqrt(di * v[diag_pos_[j]]);
     }
-    smoother_[i] = std::min(1.0, 1.9 / (1.0 + radius)) / di;
+    smoother_[i] = radius;
   }
+  // The couplings' entries too (both ends are in C; a pair listed twice counts twice, a
+  // larger radius, still a valid bound).
+  for (const NodeCoupling& c : couplings_)
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const int i = 2 * c.row_node + a, j = 2 * c.col_node + b;
+        smoother_[i] += std::abs(c.block(a, b)) / std::sqrt(v[diag_pos_[i]] * v[diag_pos_[j]]);
+      }
+  for (int i : changed_) smoother_[i] = std::min(1.0, 1.9 / (1.0 + smoother_[i])) / v[diag_pos_[i]];
 }
 
 // block_x_[a] = (S r)[set[a]]: S on the block (an exact solve on D) or, as the fallback,
@@ -195,6 +215,12 @@ void ReusedFactorPcg::apply_preconditioner(const SpMat& h, const VecX& in, VecX&
     const int i = set[a];
     for (int k = outer[i]; k < outer[i + 1]; ++k) t_[inner[k]] -= v[k] * block_x_[a];
   }
+  if (!couplings_.empty()) {  // both ends of a coupling are in the set
+    for (int a = 0; a < m; ++a) scattered_[set[a]] = block_x_[a];
+    for (const NodeCoupling& c : couplings_)
+      t_.segment<2>(2 * c.row_node) -= c.block * scattered_.segment<2>(2 * c.col_node);
+    for (int a = 0; a < m; ++a) scattered_[set[a]] = 0.0;
+  }
   factor.solve_float(t_, out);
   for (int a = 0; a < m; ++a) out[set[a]] += block_x_[a];
   // out += S (in - H out), rows of the set only (H is symmetric: row i = column i).
@@ -204,6 +230,8 @@ void ReusedFactorPcg::apply_preconditioner(const SpMat& h, const VecX& in, VecX&
     for (int k = outer[i]; k < outer[i + 1]; ++k) hz += v[k] * out[inner[k]];
     t_[i] = in[i] - hz;
   }
+  for (const NodeCoupling& c : couplings_)
+    t_.segment<2>(2 * c.row_node) -= c.block * out.segment<2>(2 * c.col_node);
   smooth(t_);
   for (int a = 0; a < m; ++a) out[set[a]] += block_x_[a];
 }
@@ -213,6 +241,7 @@ void ReusedFactorPcg::apply_preconditioner(const SpMat& h, const VecX& in, VecX&
 int ReusedFactorPcg::run(const SpMat& h, const VecX& b, VecX& x, const SolveRequest& req,
                          SparseLdlt& factor, LinearSolveStats& stats) {
   x.setZero();
+  couplings_ = req.couplings;
   const double b_norm = b.norm();
   if (b_norm == 0.0) return 1;
   r_ = b;
@@ -223,7 +252,7 @@ int ReusedFactorPcg::run(const SpMat& h, const VecX& b, VecX& x, const SolveRequ
   const bool decide = req.threshold > 0.0 && req.lambda_min > 0.0;
   double decrease = 0.0;
   for (int k = 1; k <= max_iterations_; ++k) {
-    const double php = multiply(h, p_, hp_);
+    const double php = multiply(h, couplings_, p_, hp_);
     if (!(php > 0.0) || !std::isfinite(php)) return -1;
     const double alpha = rz / php;
     decrease += alpha * rz;  // twice the decrease of the quadratic model so far
@@ -239,7 +268,7 @@ int ReusedFactorPcg::run(const SpMat& h, const VecX& b, VecX& x, const SolveRequ
       };
       if (certain(r_norm)) {
         // Confirm with the true residual b - H x (CG's recurrence drifts by rounding).
-        multiply(h, x, hp_);
+        multiply(h, couplings_, x, hp_);
         z_ = b - hp_;
         if (certain(z_.norm())) return 1;
       }

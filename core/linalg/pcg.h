@@ -11,6 +11,14 @@
 // clock time, so runs stay bit-for-bit reproducible), and at once when PCG does not
 // converge within the cost of a factorisation: the direct solve is always the fallback.
 //
+// Contact couplings outside the pattern (SolveRequest::couplings, SparseHessian::couplings):
+// a fold's node pairs that share no triangle. H is then h plus those 2x2 blocks: the
+// products add them, and since no factor holds them (the factor's pattern, and its
+// analysis, stay the mesh's), their nodes are always in the corrected set C, whose block
+// solve (or Jacobi fallback) includes them. So a new contact costs no rebuild of the
+// pattern, no new analysis and no factorisation: PCG's few extra iterations carry it
+// (docs/performance.md, "Stalls").
+//
 // Accuracy of an inexact p, and Newton's stopping test |p|_inf < threshold: PCG runs until
 // the *decision* of the test is the one the exact solution p* would give. With H = M + K,
 // K positive semi-definite (projected elasticity, barriers, friction, the ceiling), every
@@ -96,6 +104,11 @@ class ReusedFactorPcg {
   bool use_block_ = false;
   VecX block_x_;   // S r on `block_set_` (or on `changed_`, the fallback)
   VecX smoother_;  // omega_i / H(i, i) on `changed_` (the fallback)
+  // H's couplings outside the pattern (SolveRequest::couplings) in the current solve; their
+  // nodes are always in C, so the block (or the fallback) carries them.
+  std::span<const NodeCoupling> couplings_;
+  VecX scattered_;  // S r spread over all unknowns (zero outside the set), for the couplings'
+                    // product
 };
 
 }  // namespace invfree

@@ -111,17 +111,32 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
   return h;
 }
 
-bool has_node_block(const SparseHessian& h, int i, int j) {
+bool pattern_has_node_block(const SparseHessian& h, int i, int j) {
   const Eigen::SparseMatrix<double>& m = h.matrix;
   const int* inner = m.innerIndexPtr();
   const int begin = m.outerIndexPtr()[2 * j], end = m.outerIndexPtr()[2 * j + 1];
   return std::binary_search(inner + begin, inner + end, 2 * i);
 }
 
+bool has_node_block(const SparseHessian& h, int i, int j) {
+  return h.keep_couplings || pattern_has_node_block(h, i, j);
+}
+
 void add_node_block(SparseHessian& h, int i, int j, const Mat2& block) {
+  if (h.keep_couplings && !pattern_has_node_block(h, i, j)) {
+    // A zero block (a point-edge pair in a point-point regime leaves the far endpoint
+    // uncoupled) adds nothing: not listed, so its nodes do not join PCG's correction.
+    if (!block.isZero(0.0)) h.couplings.push_back({i, j, block});
+    return;
+  }
   double* v = h.values();
   for (int b = 0; b < 2; ++b)
     for (int a = 0; a < 2; ++a) v[find_slot(h.matrix, 2 * i + a, 2 * j + b)] += block(a, b);
+}
+
+void multiply_hessian(const SparseHessian& h, const VecX& v, VecX& y) {
+  y.noalias() = h.matrix * v;
+  if (!h.couplings.empty()) add_couplings_product(h.couplings, v, y);
 }
 
 void SparseHessian::eliminate_ceiling() {

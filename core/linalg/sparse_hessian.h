@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "linalg/node_coupling.h"
 #include "scene/mesh.h"
 
 namespace invfree {
@@ -38,8 +39,21 @@ struct SparseHessian {
   // to redo its symbolic analysis.
   std::vector<std::array<int, 2>> extra_pairs;
   int pattern_version = 0;
+  // Contact blocks outside the pattern, without a rebuild. With keep_couplings (Newton sets
+  // it where PCG solves the system: linear_solver.h's solves_by_pcg), add_node_block keeps
+  // the 2x2 block of a node pair the pattern lacks in `couplings` (linalg/node_coupling.h)
+  // instead of the pattern growing; the matrix is then `matrix` plus the couplings, and the
+  // PCG solve multiplies them and corrects its factor, which never holds them, on their
+  // nodes (pcg.h). Without it (the direct solvers, a reduced basis) such a block makes the
+  // assembly rebuild the pattern (incremental_potential.h) and the solver redo its
+  // analysis. Cleared by every assembly.
+  bool keep_couplings = false;
+  std::vector<NodeCoupling> couplings;
 
-  void set_zero() { std::fill_n(matrix.valuePtr(), matrix.nonZeros(), 0.0); }
+  void set_zero() {
+    std::fill_n(matrix.valuePtr(), matrix.nonZeros(), 0.0);
+    couplings.clear();
+  }
   double* values() { return matrix.valuePtr(); }
   // Makes the ceiling row and column those of an eliminated (fixed) unknown.
   void eliminate_ceiling();
@@ -53,9 +67,15 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
 // has no such entry.
 int sparse_slot(const Eigen::SparseMatrix<double>& m, int row, int col);
 
-// True when the 2x2 block of nodes (i, j) is in the pattern (both triangles).
+// True when add_node_block can take the 2x2 block of nodes (i, j): the pattern holds it
+// (both triangles), or the Hessian keeps blocks outside its pattern (keep_couplings).
 bool has_node_block(const SparseHessian& h, int i, int j);
-// Adds a 2x2 block at nodes (i, j); the pattern must hold it.
+// True when the pattern itself holds the 2x2 block of nodes (i, j).
+bool pattern_has_node_block(const SparseHessian& h, int i, int j);
+// Adds a 2x2 block at nodes (i, j): into the pattern, or (keep_couplings) as a coupling
+// when the pattern lacks it (a zero block is dropped); otherwise the pattern must hold it.
 void add_node_block(SparseHessian& h, int i, int j, const Mat2& block);
+// y = H v, the couplings included (Eigen's product plus add_couplings_product).
+void multiply_hessian(const SparseHessian& h, const VecX& v, VecX& y);
 
 }  // namespace invfree

@@ -23,7 +23,42 @@ void SubmatrixLdlt::reserve(int n, int max_size, long max_envelope) {
   trial_.assign(max_size, 0);
   set_.clear();
   set_.reserve(max_size);
+  extra_begin_.assign(max_size + 1, 0);
+  extra_col_.assign(16L * max_size, 0);
+  extra_value_.assign(16L * max_size, 0.0);
   m_ = 0;
+}
+
+// The couplings' scalar entries whose row and column are both in the set, bucketed by row
+// place in list order (local_ is set).
+void SubmatrixLdlt::gather_couplings(std::span<const NodeCoupling> couplings) {
+  const int m = m_;
+  std::fill(extra_begin_.begin(), extra_begin_.begin() + m + 1, 0);
+  auto each_entry = [&](auto&& fn) {
+    for (const NodeCoupling& c : couplings)
+      for (int a = 0; a < 2; ++a) {
+        const int r = local_[2 * c.row_node + a];
+        if (r < 0) continue;
+        for (int b = 0; b < 2; ++b) {
+          const int col = local_[2 * c.col_node + b];
+          if (col >= 0) fn(r, col, c.block(a, b));
+        }
+      }
+  };
+  each_entry([&](int r, int, double) { ++extra_begin_[r + 1]; });
+  for (int a = 0; a < m; ++a) extra_begin_[a + 1] += extra_begin_[a];
+  const size_t total = static_cast<size_t>(extra_begin_[m]);
+  if (total > extra_col_.size()) {
+    extra_col_.resize(total);
+    extra_value_.resize(total);
+  }
+  each_entry([&](int r, int col, double value) {
+    const int at = extra_begin_[r]++;
+    extra_col_[at] = col;
+    extra_value_[at] = value;
+  });
+  for (int a = m; a > 0; --a) extra_begin_[a] = extra_begin_[a - 1];
+  extra_begin_[0] = 0;
 }
 
 // A node coupled to more than this many others (the ceiling's unknown, pulled by every
@@ -38,7 +73,7 @@ void SubmatrixLdlt::order(const Eigen::SparseMatrix<double>& h, const std::vecto
   const int* outer = h.outerIndexPtr();
   const int* inner = h.innerIndexPtr();
   for (int a = 0; a < m; ++a) {
-    int degree = 0;
+    int degree = extra_begin_[a + 1] - extra_begin_[a];
     for (int k = outer[set[a]]; k < outer[set[a] + 1]; ++k)
       if (inner[k] != set[a] && local_[inner[k]] >= 0) ++degree;
     degree_[a] = degree;
@@ -63,13 +98,15 @@ void SubmatrixLdlt::order(const Eigen::SparseMatrix<double>& h, const std::vecto
       for (int q = begin; q < end; ++q) {
         const int i = set[into[q]];
         const int from = tail;
-        for (int k = outer[i]; k < outer[i + 1]; ++k) {
-          const int b = local_[inner[k]];
+        auto visit = [&](int b) {
           if (b >= 0 && mark_[b] != stamp && degree_[b] <= kDenseDegree) {
             mark_[b] = stamp;
             into[tail++] = b;
           }
-        }
+        };
+        for (int k = outer[i]; k < outer[i + 1]; ++k) visit(local_[inner[k]]);
+        for (int e = extra_begin_[into[q]]; e < extra_begin_[into[q] + 1]; ++e)
+          visit(extra_col_[e]);
         std::sort(into.begin() + from, into.begin() + tail, fewer);
       }
       begin = end;
@@ -109,13 +146,16 @@ void SubmatrixLdlt::order(const Eigen::SparseMatrix<double>& h, const std::vecto
   for (int r = 0; r < m; ++r) position_[order_[r]] = r;
 }
 
-bool SubmatrixLdlt::factorize(const Eigen::SparseMatrix<double>& h, const std::vector<int>& set) {
+bool SubmatrixLdlt::factorize(const Eigen::SparseMatrix<double>& h,
+                              std::span<const NodeCoupling> couplings,
+                              const std::vector<int>& set) {
   m_ = 0;
   if (set.size() > order_.size()) return false;
   set_.assign(set.begin(), set.end());
   m_ = static_cast<int>(set.size());
   const int m = m_;
   for (int a = 0; a < m; ++a) local_[set[a]] = a;
+  gather_couplings(couplings);
   order(h, set);
   const int* outer = h.outerIndexPtr();
   const int* inner = h.innerIndexPtr();
@@ -129,6 +169,8 @@ bool SubmatrixLdlt::factorize(const Eigen::SparseMatrix<double>& h, const std::v
       const int b = local_[inner[k]];
       if (b >= 0) first = std::min(first, position_[b]);
     }
+    for (int e = extra_begin_[order_[r]]; e < extra_begin_[order_[r] + 1]; ++e)
+      first = std::min(first, position_[extra_col_[e]]);
     first_[r] = first;
     env_begin_[r + 1] = env_begin_[r] + (r - first);
   }
@@ -144,6 +186,11 @@ bool SubmatrixLdlt::factorize(const Eigen::SparseMatrix<double>& h, const std::v
         const int c = position_[b];
         if (c < r) env_[env_begin_[r] + (c - first_[r])] = value[k];
         if (c == r) d_[r] = value[k];
+      }
+      // The couplings' entries add (a pair may be listed twice); they are off-diagonal.
+      for (int e = extra_begin_[order_[r]]; e < extra_begin_[order_[r] + 1]; ++e) {
+        const int c = position_[extra_col_[e]];
+        if (c < r) env_[env_begin_[r] + (c - first_[r])] += extra_value_[e];
       }
     }
     // Row by row: u_rc = a_rc - sum_k u_rk l_ck (u_rk = l_rk d_k), l_rc = u_rc / d_c,

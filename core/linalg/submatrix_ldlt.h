@@ -9,14 +9,18 @@
 // envelope (profile) LDL^T of that ordering: row r of L is stored from its first nonzero
 // column to the diagonal and fill stays inside it.
 //
-// Inputs: H in full symmetric CSC storage (both triangles), D as a list of distinct row
+// Inputs: H in full symmetric CSC storage (both triangles), possibly with couplings outside
+// that pattern (2x2 node blocks, both orientations listed), D as a list of distinct row
 // indices. Output: solve() applies H_DD^-1. Every buffer is sized by `reserve`; a set or
-// an envelope larger than those buffers is refused (factorize returns false), never grown.
+// an envelope larger than those buffers is refused (factorize returns false), never grown;
+// only the couplings' entries, beyond 16 per unknown of the set, grow theirs.
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <span>
 #include <vector>
 
+#include "linalg/node_coupling.h"
 #include "types.h"
 
 namespace invfree {
@@ -28,9 +32,15 @@ class SubmatrixLdlt {
   void reserve(int n, int max_size, long max_envelope);
   int max_size() const { return static_cast<int>(order_.size()); }
 
-  // Orders and factorises H restricted to `set`. False when the set or its envelope does
-  // not fit the buffers or a pivot is not positive and finite (H_DD not positive definite).
-  bool factorize(const Eigen::SparseMatrix<double>& h, const std::vector<int>& set);
+  // Orders and factorises H restricted to `set`, H = h plus `couplings` (2x2 blocks outside
+  // h's pattern, linalg/node_coupling.h; those with both nodes' unknowns in the set count).
+  // False when the set or its envelope does not fit the buffers or a pivot is not positive
+  // and finite (H_DD not positive definite).
+  bool factorize(const Eigen::SparseMatrix<double>& h, std::span<const NodeCoupling> couplings,
+                 const std::vector<int>& set);
+  bool factorize(const Eigen::SparseMatrix<double>& h, const std::vector<int>& set) {
+    return factorize(h, {}, set);
+  }
 
   // x[a] = (H_DD^-1 rhs_D)[a] for a = 0 .. |D| - 1, in the order of the `set` given to
   // factorize; rhs is full length (only its entries in D are read), x at least |D| long.
@@ -41,6 +51,7 @@ class SubmatrixLdlt {
 
  private:
   void order(const Eigen::SparseMatrix<double>& h, const std::vector<int>& set);
+  void gather_couplings(std::span<const NodeCoupling> couplings);
 
   int m_ = 0;
   std::vector<int> local_;       // per unknown of H: its place in `set`, or -1
@@ -55,6 +66,11 @@ class SubmatrixLdlt {
   std::vector<int> by_degree_;  // places in `set` by increasing degree
   std::vector<int> trial_;      // a candidate start's search (order() keeps it if deeper)
   std::vector<int> set_;        // the set given to factorize (solve reads it)
+  // The couplings' entries inside the set, by row: place in `set` -> (place, value) in
+  // extra_col_ / extra_value_[extra_begin_[a] .. extra_begin_[a + 1]). Sized by reserve for
+  // 16 entries per place; more grow them (an allocation, rare).
+  std::vector<int> extra_begin_, extra_col_;
+  std::vector<double> extra_value_;
 };
 
 }  // namespace invfree

@@ -23,6 +23,26 @@ void rebuild_pattern(const StepProblem& p, std::vector<std::array<int, 2>> pairs
   hess.pattern_version = version + 1;
 }
 
+// Room for the couplings a contact brings (SparseHessian::couplings), made once: a point-edge
+// block couples its node with the edge's two nodes (4 blocks outside the pattern, both
+// orientations), friction's as many again, a few edges per boundary node. A fold beyond
+// that grows the list (an allocation, rare: once per new maximum).
+void reserve_couplings(const StepProblem& p, SparseHessian& hess) {
+  if (!hess.keep_couplings || !p.self_contact.on || hess.couplings.capacity() > 0) return;
+  hess.couplings.reserve(16 * static_cast<size_t>(p.self_contact.boundary->node_count()) + 64);
+}
+
+// The couplings' rows and columns of fixed unknowns, zeroed as eliminate_fixed_dofs zeroes
+// the pattern's (the identity rows are the pattern's diagonal).
+void eliminate_fixed_couplings(const FixedDofs& f, std::vector<NodeCoupling>& couplings) {
+  auto fixed = [&](int dof) { return std::binary_search(f.dofs.begin(), f.dofs.end(), dof); };
+  for (NodeCoupling& c : couplings)
+    for (int a = 0; a < 2; ++a) {
+      if (fixed(2 * c.row_node + a)) c.block.row(a).setZero();
+      if (fixed(2 * c.col_node + a)) c.block.col(a).setZero();
+    }
+}
+
 }  // namespace
 
 double ip_energy(const StepProblem& p, StepCaches& caches, const VecX& z) {
@@ -32,12 +52,18 @@ double ip_energy(const StepProblem& p, StepCaches& caches, const VecX& z) {
 void ip_gradient_hessian(const StepProblem& p, StepCaches& caches, const VecX& z, VecX& gradient,
                          SparseHessian& hess) {
   if (gradient.size() != p.dof_count()) gradient.resize(p.dof_count());
+  reserve_couplings(p, hess);
   while (true) {
     Assembly out{gradient, hess};
     if (assemble_terms(p, caches, z, out)) break;
+    const bool keep = hess.keep_couplings;
     rebuild_pattern(p, std::move(out.needed_pairs), hess);  // the values so far are stale
+    hess.keep_couplings = keep;
   }
-  if (p.fixed.on) eliminate_fixed_dofs(p.fixed, gradient.data(), hess.values());
+  if (p.fixed.on) {
+    eliminate_fixed_dofs(p.fixed, gradient.data(), hess.values());
+    if (!hess.couplings.empty()) eliminate_fixed_couplings(p.fixed, hess.couplings);
+  }
 }
 
 double largest_safe_step(const StepProblem& p, StepCaches& caches, const VecX& z,

@@ -117,7 +117,8 @@ struct StepProblem {
 
 double ip_energy(const StepProblem& p, StepCaches& caches, const VecX& z);
 // A term's Hessian blocks outside the pattern rebuild it (hessian.pattern_version
-// changes; the solve redoes its symbolic analysis).
+// changes; the solve redoes its symbolic analysis), unless the Hessian keeps them as
+// couplings (SparseHessian::keep_couplings: no rebuild, no new analysis).
 void ip_gradient_hessian(const StepProblem& p, StepCaches& caches, const VecX& z, VecX& gradient,
                          SparseHessian& hessian);
 // The largest alpha in [0, 1] that every term's filter allows along dir (the planes, the

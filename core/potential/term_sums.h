@@ -127,6 +127,7 @@ bool assemble_terms(const P& p, StepCaches& caches, const VecX& z, Assembly& out
   thread_pool().run(zero.blocks, [&](int b) {
     std::fill(values + zero.begin(b), values + zero.end(b, nnz), 0.0);
   });
+  out.hessian.couplings.clear();
   add_all_node_derivatives(p, z, out);
   const double h2 = p.h * p.h;
   const TermPoint at = term_point(p, caches, z);

@@ -51,6 +51,19 @@ struct Newton {
 
   // p = -H^-1 g at z into ws.direction (ws.gradient, ws.hessian hold g and H).
   bool newton_direction(const VecX& z) {
+    // Where PCG solves a projected (positive definite) Hessian, contact blocks outside the
+    // pattern stay couplings: no rebuild, no new analysis.
+    ws.hessian.keep_couplings = !ws.reduced.on() && settings.projected &&
+                                solves_by_pcg(settings.linear_solver, settings.projected);
+    if (full_space_direction(z)) return true;
+    if (ws.hessian.couplings.empty()) return false;
+    // PCG failed on a fresh factor too (never seen): the couplings join the pattern (a
+    // rebuild and a new analysis) and the factor holds them.
+    ws.hessian.keep_couplings = false;
+    return full_space_direction(z);
+  }
+
+  bool full_space_direction(const VecX& z) {
     const auto t = Clock::now();
     ip_gradient_hessian(p, caches, z, ws.gradient, ws.hessian);
     ws.rhs = -ws.gradient;
@@ -58,6 +71,7 @@ struct Newton {
     if (ws.reduced.on()) return reduced_direction();
     prepare_linear_solver(ws, settings.linear_solver, settings.projected);
     SolveRequest request;
+    request.couplings = ws.hessian.couplings;
     request.threshold = settings.tol * p.h;
     if (settings.projected) {
       request.lambda_min = hessian_lower_bound(p, ws.min_node_mass);
@@ -121,7 +135,7 @@ struct Newton {
   // the length is a power of two, so the filters' steps scale exactly and this limit
   // decides each doubling as a filter call of its own would.
   double expand(const VecX& z, double trial_energy, double current) {
-    ws.trial2.noalias() = ws.hessian.matrix * ws.direction;
+    multiply_hessian(ws.hessian, ws.direction, ws.trial2);
     const double model_decrease =
         -(ws.gradient.dot(ws.direction) + 0.5 * ws.direction.dot(ws.trial2));
     if (!(model_decrease > 0.0 && current - trial_energy > 1.5 * model_decrease))
@@ -154,6 +168,7 @@ void prepare_linear_solver(NewtonWorkspace& ws, LinearSolverKind kind, bool proj
     return;
   solver.setup(ws.hessian.matrix, kind, projected);
   ws.analyzed_pattern = ws.hessian.pattern_version;
+  ++ws.analyses;
 }
 
 NewtonResult minimize_incremental_potential(StepProblem& problem, StepCaches& caches,

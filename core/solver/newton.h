@@ -39,7 +39,10 @@
 // replaced by the straight trial; step expansion checks the longest expansion once (its
 // candidates cover every shorter one).
 // One rule decides a new symbolic analysis of the linear solver: prepare_linear_solver,
-// called before every solve (a changed pattern or changed solver settings).
+// called before every solve (a changed pattern or changed solver settings). Where PCG
+// solves a projected Hessian the pattern never changes: contact blocks outside it are kept
+// as couplings (SparseHessian::keep_couplings) that PCG carries (linalg/pcg.h); the direct
+// solvers' factor needs every block, so there a new contact grows the pattern.
 //
 // The linear solve may be inexact (PCG, see linalg/pcg.h); it is run until the
 // stopping decision is the one the exact direction would give, and each of its directions
@@ -109,6 +112,7 @@ struct NewtonWorkspace {
   double min_node_mass = 0.0;  // for the PCG error bound (linalg/pcg.h)
   FrictionCrossingScratch crossings;
   int analyzed_pattern = 0;  // the Hessian's pattern version the solver's analysis is for
+  int analyses = 0;          // symbolic analyses so far (prepare_linear_solver's setups)
 };
 
 // The one rule for a new symbolic analysis: the solver is set up again when it has none

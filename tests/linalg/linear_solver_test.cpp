@@ -143,6 +143,85 @@ TEST(Pcg, ReusesOneFactorisationAcrossNearbySystems) {
   EXPECT_GT(stats.pcg_iterations, solves);
 }
 
+// A folded `compress` (n_seg 64, self-contact) 30 steps after its contact blocks first lay
+// outside the mesh's pattern (Newton keeps them as couplings, SparseHessian::couplings):
+// the fold pressed together (n_seg 40 and 48 fold too, but their pairs outside the pattern
+// are point-point ones whose blocks there are zero).
+struct FoldSystem {
+  Simulation sim;
+  VecX z;
+  explicit FoldSystem() {
+    SceneDef s = *load_builtin_scene("compress").scene;
+    s.n_seg = 64;
+    s.has_self_contact = true;
+    sim = make_simulation(s);
+    for (int k = 0; k < 300 && sim.workspace->newton.hessian.couplings.empty(); ++k)
+      EXPECT_EQ(step(sim).status, StepStatus::Ok);
+    for (int k = 0; k < 30; ++k) EXPECT_EQ(step(sim).status, StepStatus::Ok);
+    z.resize(sim.workspace->problem.dof_count());
+    z.head(sim.x.size()) = sim.x + 0.5 * s.h * sim.v;  // part of a step ahead
+    z[sim.x.size()] = sim.ceiling_y;
+    begin_terms(sim.workspace->problem, sim.workspace->caches, z);  // the candidates there
+  }
+};
+
+// The pattern plus the couplings is the matrix the pattern would be rebuilt into, entry
+// for entry; PCG on it (its factor never holding the couplings) solves as a direct solve
+// of that rebuilt matrix does; the direct backends refuse couplings.
+TEST(Pcg, SolvesWithContactCouplingsOutsideThePattern) {
+  FoldSystem fold;
+  StepWorkspace& ws = *fold.sim.workspace;
+  ASSERT_FALSE(ws.newton.hessian.couplings.empty()) << "the fold brought no contact";
+  EXPECT_EQ(ws.newton.hessian.pattern_version, 0) << "PCG's Hessian should not have grown";
+  SparseHessian kept = ws.newton.hessian;
+  kept.keep_couplings = true;
+  VecX g_kept, g_rebuilt;
+  ip_gradient_hessian(ws.problem, ws.caches, fold.z, g_kept, kept);
+  ASSERT_FALSE(kept.couplings.empty());
+  EXPECT_EQ(kept.pattern_version, 0);
+  SparseHessian rebuilt = ws.newton.hessian;
+  rebuilt.keep_couplings = false;
+  ip_gradient_hessian(ws.problem, ws.caches, fold.z, g_rebuilt, rebuilt);
+  EXPECT_EQ(rebuilt.pattern_version, 1);
+  EXPECT_TRUE(rebuilt.couplings.empty());
+  EXPECT_TRUE(g_kept == g_rebuilt);
+  Eigen::SparseMatrix<double> merged = kept.matrix;
+  for (const NodeCoupling& c : kept.couplings)
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        merged.coeffRef(2 * c.row_node + a, 2 * c.col_node + b) += c.block(a, b);
+  const Eigen::SparseMatrix<double> difference = merged - rebuilt.matrix;
+  EXPECT_EQ(difference.coeffs().cwiseAbs().maxCoeff(), 0.0);
+  VecX y;
+  const VecX v = VecX::Random(kept.matrix.rows());
+  multiply_hessian(kept, v, y);
+  EXPECT_LT((y - rebuilt.matrix * v).norm(), 1e-12 * y.norm());
+
+  const VecX b = -g_kept;
+  const VecX exact = dense_solve(rebuilt.matrix, b);
+  LinearSolver pcg;
+  pcg.setup(kept.matrix, LinearSolverKind::Auto, true);
+  ASSERT_STREQ(pcg.backend_name(), "pcg+ldlt");
+  LinearSolveStats stats;
+  SolveRequest request;
+  request.forcing = 1e-13;  // as exact as a direct solve
+  request.couplings = kept.couplings;
+  VecX x;
+  ASSERT_TRUE(pcg.solve(kept.matrix, b, x, request, stats));
+  EXPECT_LT((x - exact).norm(), 1e-9 * exact.norm());
+  // Without the couplings PCG solves another system (the test can tell).
+  SolveRequest without = request;
+  without.couplings = {};
+  VecX x_without;
+  ASSERT_TRUE(pcg.solve(kept.matrix, b, x_without, without, stats));
+  EXPECT_GT((x_without - exact).norm(), 1e-6 * exact.norm());
+  for (LinearSolverKind kind : {LinearSolverKind::Ldlt, LinearSolverKind::Cholmod}) {
+    LinearSolver direct;
+    direct.setup(kept.matrix, kind, true);
+    EXPECT_FALSE(direct.solve(kept.matrix, b, x, request, stats)) << linear_solver_name(kind);
+  }
+}
+
 double max_speed(const Simulation& sim) {
   double v = 0;
   for (int i = 0; i < sim.mesh.node_count(); ++i) v = std::max(v, sim.v.segment<2>(2 * i).norm());

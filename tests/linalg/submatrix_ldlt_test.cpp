@@ -2,7 +2,8 @@
 // like the ones it gets (strips along a plane, scattered rows, the dense ceiling unknown,
 // several components) to the accuracy of an independent factorisation, one object reused
 // across sets; refuses sets and envelopes beyond its buffers and a submatrix that is not
-// positive definite; keeps a strip's envelope narrow (that is what the ordering is for).
+// positive definite; keeps a strip's envelope narrow (that is what the ordering is for);
+// takes the couplings a contact brings outside the matrix's pattern.
 #include "linalg/submatrix_ldlt.h"
 
 #include <gtest/gtest.h>
@@ -74,6 +75,54 @@ TEST(SubmatrixLdlt, SolvesEveryKindOfSetOfTheNewtonSystem) {
     const VecX ref = reference_solve(h, set, rhs);
     EXPECT_LT((x.head(set.size()) - ref).norm(), 1e-12 * ref.norm()) << set.size() << " unknowns";
   }
+}
+
+// Couplings outside the pattern (linalg/node_coupling.h), as a fold's contacts bring them:
+// nodes of the bottom row pressed against nodes three rows up, which share no triangle
+// with them, one pair listed twice. The block solve sees h plus the couplings.
+TEST(SubmatrixLdlt, SolvesWithCouplingsOutsideThePattern) {
+  const int n_seg = 16;
+  SpMat h = mesh_matrix(n_seg, 0.1, 9);
+  const int n = static_cast<int>(h.rows());
+  std::vector<NodeCoupling> couplings;
+  SpMat merged = h;
+  auto press = [&](int i, int j, const Vec2& normal, double k) {
+    // k (e_i - e_j)(e_i - e_j)^T along the normal: PSD; its diagonal blocks go into the
+    // pattern, its off-diagonal ones into the list, both orientations.
+    const Mat2 nn = k * normal * normal.transpose();
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        h.coeffRef(2 * i + a, 2 * i + b) += nn(a, b);
+        h.coeffRef(2 * j + a, 2 * j + b) += nn(a, b);
+        merged.coeffRef(2 * i + a, 2 * i + b) += nn(a, b);
+        merged.coeffRef(2 * j + a, 2 * j + b) += nn(a, b);
+        merged.coeffRef(2 * i + a, 2 * j + b) -= nn(a, b);
+        merged.coeffRef(2 * j + a, 2 * i + b) -= nn(a, b);
+      }
+    couplings.push_back({i, j, -nn});
+    couplings.push_back({j, i, -nn});
+  };
+  const int row = n_seg + 1;
+  for (int c = 2; c < 10; ++c) press(c, 3 * row + c + 1, Vec2(0.3, 1.0).normalized(), 40.0);
+  press(4, 3 * row + 5, Vec2(0.0, 1.0), 25.0);  // the same pair again
+  h.makeCompressed();
+  merged.makeCompressed();
+  ASSERT_EQ(h.nonZeros(), mesh_matrix(n_seg, 0.1, 9).nonZeros()) << "h keeps its pattern";
+  std::vector<int> set = strip(n_seg, 0, 1);
+  for (int i : strip(n_seg, 3, 4)) set.push_back(i);
+  set.push_back(n - 1);  // the ceiling
+  const VecX rhs = VecX::Random(n);
+  SubmatrixLdlt block;
+  block.reserve(n, n, 64L * n);
+  ASSERT_TRUE(block.factorize(h, couplings, set));
+  VecX x(n);
+  block.solve(rhs, x);
+  const VecX ref = reference_solve(merged, set, rhs);
+  EXPECT_LT((x.head(set.size()) - ref).norm(), 1e-12 * ref.norm());
+  // Without the couplings the block solves another matrix (the test can tell them apart).
+  ASSERT_TRUE(block.factorize(h, set));
+  block.solve(rhs, x);
+  EXPECT_GT((x.head(set.size()) - ref).norm(), 1e-3 * ref.norm());
 }
 
 TEST(SubmatrixLdlt, KeepsAStripWithinANarrowBand) {
