@@ -19,6 +19,7 @@ packages=(
   clang libclang-rt-14-dev                                # libFuzzer target
   ffmpeg                                                  # optional: render --mp4
   ccache                                                  # compile cache (rebuilds, CI)
+  pybind11-dev python3-numpy python3-pytest python3-matplotlib  # the Python module (docs/python.md)
 )
 missing=()
 for p in "${packages[@]}"; do
