@@ -75,6 +75,9 @@ int run_live_command(const LiveCommandOptions& opt) {
   // Outputs are checked before the window opens, by the rules `render` follows
   // (docs/outputs.md): a file that cannot be written, an existing --screenshot FILE or a
   // non-empty --record DIR without --force (exit 2), and so on.
+  if (auto e = check_outputs_apart({{"--screenshot", lo.screenshot_file}},
+                                   {{"--record", lo.record_dir}}))
+    return fail(e.exit_code, e.message);
   if (!lo.screenshot_file.empty()) {
     std::vector<std::string> inputs = opt.scene.input_files();
     inputs.insert(inputs.end(), opt.scene_files.begin(), opt.scene_files.end());
@@ -145,7 +148,7 @@ void register_live_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--ui-scale", opt.live.ui_scale,
                   "size of the panel's text and of the det F panel, 0.75 to 3 (default: from the "
                   "screen: 1 at 1280x720, 1.5 at 1920x1080; keys + and -)")
-      ->check(CLI::Range(double(live::kMinUiScale), double(live::kMaxUiScale)));
+      ->check(finite_range(live::kMinUiScale, live::kMaxUiScale));
   cmd->add_option("--det-f-panel", opt.det_f_panel,
                   "the det F panel (colour bar): beside the picture, over it, or hidden (key D)")
       ->capture_default_str()

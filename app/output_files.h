@@ -14,6 +14,8 @@
 //   and must be empty (the lock file aside) unless --force.
 #pragma once
 
+#include <fcntl.h>
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +30,10 @@ struct OutputError {
   std::string message;
   explicit operator bool() const { return exit_code != 0; }
 };
+
+// The descriptor of the OutputDirectory (below) open as `dir` (spelled as it was opened),
+// or -1: for writers that cannot go through write_file_atomically (ffmpeg).
+int output_directory_fd(const std::string& dir);
 
 // Writes `data` to `path` atomically. Returns "" or a one-line error naming the path.
 std::string write_file_atomically(const std::string& path, std::string_view data);
@@ -49,13 +55,28 @@ class AtomicFileWriter {
 
  private:
   void abandon();
-  std::string path_, tmp_;
+  std::string path_, name_, tmp_;  // name_ and tmp_: relative to dir_fd_
+  int dir_fd_ = AT_FDCWD;          // or the descriptor of an OutputDirectory
   int fd_ = -1;
 };
 
 // Checks, before a long run, that `path` can be written later (the rules above); `inputs`
 // are the paths of the files the run reads (names that do not exist are ignored).
 OutputError check_output_file(const std::string& path, const std::vector<std::string>& inputs = {});
+
+// An output named by an option, for check_outputs_apart's message.
+struct NamedOutput {
+  std::string option;  // e.g. "--csv"
+  std::string path;
+};
+
+// Refuses (kBadInput), before a run, outputs that would collide at its end: a file that
+// is also a directory the run fills, or lies above one (`--obj D --csv D`, `--obj D/sub
+// --csv D`), or two file outputs that are one path. Paths are compared made absolute and
+// normal, symbolic links of the parts that exist resolved. A file inside a directory the
+// run fills (`--obj D --csv D/run.csv`) is fine.
+OutputError check_outputs_apart(const std::vector<NamedOutput>& files,
+                                const std::vector<NamedOutput>& dirs);
 
 // A directory a run fills, held (locked) from open() until close() or destruction.
 // Standard output carries each command's summary line through stdio's buffer, so a full
@@ -78,11 +99,18 @@ class OutputDirectory {
   // Creates `dir` if missing, locks it (another run holding it: kBadInput, naming its
   // pid), refuses it when it holds anything but the lock file unless `force`
   // (kBadInput), and checks that a file can be created in it (kOutputFailed).
+  // The directory is opened once: files written into it by path while it is open
+  // ("DIR/name" with DIR as given here: write_file_atomically, AtomicFileWriter) go
+  // through that descriptor, so moving it or putting a symbolic link in its place during
+  // the run changes nothing.
   OutputError open(const std::string& dir, bool force);
   void close();  // removes the lock file and releases the lock
+  int fd() const { return dir_fd_; }  // the directory's descriptor, -1 when not open
 
  private:
+  OutputError open_and_lock(const std::string& dir, bool force);
   std::string lock_path_;
+  int dir_fd_ = -1;
   int lock_fd_ = -1;
 };
 

@@ -128,16 +128,20 @@ int run_simulate(const SimulateOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
-  // Check every output before the first step: a long run must not fail at its end.
-  AtomicFileWriter csv_file;
-  if (!opt.csv_path.empty()) {
+  // Check every output before the first step: a long run must not fail at its end. The
+  // OBJ directory is locked and found empty before the CSV's temporary file is made
+  // (which may be in it: --csv DIR/run.csv).
+  if (auto e = check_outputs_apart({{"--csv", opt.csv_path}}, {{"--obj", opt.obj_dir}}))
+    return fail(e.exit_code, e.message);
+  if (!opt.csv_path.empty())
     if (auto e = check_output_files({opt.csv_path}, opt.scene.input_files(), opt.force))
       return fail(e.exit_code, e.message);
-    if (auto e = csv_file.open(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
-  }
   OutputDirectory obj_dir;
   if (!opt.obj_dir.empty())
     if (auto e = obj_dir.open(opt.obj_dir, opt.force)) return fail(e.exit_code, e.message);
+  AtomicFileWriter csv_file;
+  if (!opt.csv_path.empty())
+    if (auto e = csv_file.open(opt.csv_path); !e.empty()) return fail(exit_code::kOutputFailed, e);
 
   Simulation sim = make_simulation(*scene);
   auto write_obj = [&]() -> std::string {
