@@ -1,8 +1,9 @@
 // Graceful interruption of every command. Ctrl-C (SIGINT), SIGTERM or a hang-up (SIGHUP:
 // the terminal or SSH session went away) only sets a flag; a command checks
-// `interrupted()` between steps or frames, so whatever it has written so far is complete,
-// it writes nothing partial, and it exits with `interrupted_exit_code()` (129 after
-// SIGHUP, 130 after SIGINT or SIGTERM). A second signal kills the process at once (the
+// `interrupted()` between steps or frames, and Newton between its iterations (main installs
+// it as solver/newton_interrupt.h's check: one long step stops too, and is not kept). So
+// whatever it has written so far is complete, it writes nothing partial, and it exits
+// with `interrupted_exit_code()` (129 after SIGHUP, 130 after SIGINT or SIGTERM). A second signal kills the process at once (the
 // default action), for a command that is stuck; atomic writes still leave no truncated
 // file under a final name, at most a stray "*.tmp<pid>".
 // The handlers are installed first thing in main, so a signal during start-up (scene

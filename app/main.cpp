@@ -14,6 +14,7 @@
 #include "app/interrupt.h"
 #include "app/output_files.h"
 #include "linalg/parallel.h"
+#include "solver/newton_interrupt.h"
 
 namespace {
 
@@ -41,6 +42,7 @@ ThreadVariable read_thread_variable() {
 
 int main(int argc, char** argv) {
   invfree::install_interrupt_handlers();
+  invfree::set_newton_interrupt_check(&invfree::interrupted);  // one long step stops too
   CLI::App app{
       "invfree: inversion-free neo-Hookean elastodynamics of a soft square (lecture 9, "
       "\"Stress and Its Derivative\").\n"

@@ -251,6 +251,7 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
     progress.update(out.frames, elapsed());
   }
   out.failure = producer.stop();  // joins; the simulation is the caller's again
+  if (interrupted()) out.failure = {};  // a signal stopped Newton mid-step: an interruption
   progress.clear();
   return out;
 }

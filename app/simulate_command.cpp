@@ -172,7 +172,7 @@ int run_simulate(const SimulateOptions& opt) {
   for (int k = 0; obj_error.empty() && k < opt.steps && !interrupted(); ++k) {
     const StepReport r = step(sim);
     if (r.status != StepStatus::Ok) {
-      failure = r;
+      if (!interrupted()) failure = r;  // else a signal stopped Newton: an interruption
       break;
     }
     total_iterations += r.newton_iterations;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "solver/newton_interrupt.h"
+
 namespace invfree {
 
 namespace {
@@ -161,6 +163,14 @@ struct Newton {
 
 }  // namespace
 
+namespace {
+NewtonInterruptCheck g_interrupt_check = nullptr;
+}  // namespace
+
+void set_newton_interrupt_check(NewtonInterruptCheck check) {
+  g_interrupt_check = check;
+}
+
 void prepare_linear_solver(NewtonWorkspace& ws, LinearSolverKind kind, bool projected) {
   LinearSolver& solver = ws.solver;
   if (solver.ready() && solver.requested() == kind && solver.positive_definite() == projected &&
@@ -184,6 +194,11 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, StepCaches& ca
   begin_terms(problem, caches, z);
   double energy = newton.energy(z);
   for (result.iterations = 0; result.iterations < settings.max_iterations; ++result.iterations) {
+    if (g_interrupt_check != nullptr && result.iterations > 0 && g_interrupt_check()) {
+      result.status = StepStatus::NewtonFailed;  // asked to stop (newton_interrupt.h)
+      result.energy = energy;
+      return result;
+    }
     if (settle_controls(problem, z)) energy = newton.energy(z);
     if (!newton.newton_direction(z)) {
       result.status = StepStatus::LinearSolveFailed;
