@@ -54,7 +54,8 @@ VecX initial_positions(const SceneDef& scene, const Mesh& mesh) {
 }
 
 VecX initial_velocities(const SceneDef& scene, const Mesh& mesh) {
-  if (mesh.body_begin.size() == 1) return scene.initial_velocity.replicate(mesh.node_count(), 1);
+  // Each node takes its body's velocity (placed_body: the [[body]]'s own, else
+  // initial.velocity), a scene of one [[body]] table too.
   VecX v(2 * mesh.node_count());
   for (int i = 0; i < mesh.node_count(); ++i)
     v.segment<2>(2 * i) = placed_body(scene, body_of_node(mesh, i)).velocity;
