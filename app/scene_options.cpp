@@ -54,17 +54,18 @@ std::optional<SceneDef> SceneOptions::resolve(std::string* error) const {
     *error = load.error;
     return std::nullopt;
   }
-  // Each override is checked as it is applied; mesh.shape goes last, so that the keys a
-  // shape needs (its outline, file, radius, ...) are in place whichever order they are given.
+  // Each override is read and checked alone (its type and range), the scene they make is
+  // validated once (apply_overrides); mesh.shape goes last, so that the keys a shape needs
+  // (its outline, file, radius, ...) are in place whichever order they are given.
   auto is_shape = [](const std::string& o) { return o.rfind("mesh.shape=", 0) == 0; };
+  std::vector<std::string> ordered;
   for (const bool shape_pass : {false, true})
-    for (const auto& o : overrides) {
-      if (is_shape(o) != shape_pass) continue;
-      if (auto e = apply_override(*load.scene, o); !e.empty()) {
-        *error = e;
-        return std::nullopt;
-      }
-    }
+    for (const auto& o : overrides)
+      if (is_shape(o) == shape_pass) ordered.push_back(o);
+  if (auto e = apply_overrides(*load.scene, ordered); !e.empty()) {
+    *error = e;
+    return std::nullopt;
+  }
   return load.scene;
 }
 

@@ -1,6 +1,7 @@
 // The scene options every command shares: --scene NAME|FILE and repeated --set
 // section.key=value. `resolve` loads the scene and applies the overrides in order (mesh.shape
-// last, after the keys a shape reads), each validated (scene_io/scene_file.h); on failure it
+// last, after the keys a shape reads), each read alone, the scene they make validated once
+// (scene_io/scene_file.h's apply_overrides); on failure it
 // returns an empty optional and a one-line error. As in a scene file, E/nu and mu/lambda cannot be
 // mixed: --set material.E (or nu) together with --set material.mu (or lambda) is an error.
 // `input_files` names the file the command reads (none for a built-in scene), which no output may

@@ -108,8 +108,10 @@ std::string method_model(const Method& method) {
 std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps) {
   if (method.self_contact_only && !scene.self_contact_on())
     return "the scene has no self-contact, so nothing to take the CCD from";
-  for (const char* o : method.overrides)
-    if (std::string e = apply_override(scene, o); !e.empty()) return e;
+  // The method's overrides together, validated once (scene_io/scene_file.h).
+  const std::vector<std::string> overrides(std::begin(method.overrides),
+                                           std::end(method.overrides));
+  if (std::string e = apply_overrides(scene, overrides); !e.empty()) return e;
   if (with_substeps) scene.h /= method.substeps;
   return "";
 }

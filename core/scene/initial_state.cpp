@@ -109,6 +109,22 @@ std::optional<SceneProblem> spring_problem(const SceneDef& s, const Mesh& mesh) 
   }
   return std::nullopt;
 }
+// A body whose rest triangles lost their area only because its offset is so far from the
+// origin that double precision cannot tell its nodes apart (an offset of 1.7e308 for a 1 m
+// square): its edge, squared, is a normal double, so its size is not the cause.
+std::optional<SceneProblem> far_body_problem(const SceneDef& s, int body) {
+  if (s.bodies.empty()) return std::nullopt;
+  const PlacedBody b = placed_body(s, body);
+  const double edge = body_edge_length(s, body);
+  if (b.offset == Vec2::Zero() || !std::isnormal(0.5 * edge * edge)) return std::nullopt;
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "[[body]] %d at [%g, %g] is too far from the origin for its %g m edges: double "
+                "precision cannot hold its triangles there",
+                body + 1, b.offset.x(), b.offset.y(), edge);
+  return SceneProblem{"body.offset", buf, {}};
+}
+
 }  // namespace
 
 std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
@@ -127,12 +143,14 @@ std::optional<SceneProblem> check_initial_state(const SceneDef& s) {
     Mat2 dm;
     dm.col(0) = mesh.rest[tri[1]] - mesh.rest[tri[0]];
     dm.col(1) = mesh.rest[tri[2]] - mesh.rest[tri[0]];
-    if (const double det = dm.determinant(); !std::isnormal(det))
+    if (const double det = dm.determinant(); !std::isnormal(det)) {
+      if (auto problem = far_body_problem(s, body_of_node(mesh, tri[0]))) return problem;
       return SceneProblem{"mesh.side",
                           std::string("side / n_seg gives triangles whose area ") +
                               (std::isfinite(det) ? "underflows" : "overflows") +
                               " in double precision",
                           {"mesh.n_seg"}};
+    }
     if (!needs_det_f_positive) continue;
     Mat2 ds;
     ds.col(0) = x.segment<2>(2 * tri[1]) - x.segment<2>(2 * tri[0]);

@@ -31,7 +31,7 @@ std::string vec2_in(const toml::node& n, Vec2& out) {
 }
 
 // One key of a [[body]] table into `in`; "" or the reason. A number is within the range of
-// the [mesh] or [material] key it stands for; n_seg must be a TOML integer.
+// the [mesh] or [material] key it stands for; n_seg is read as every integer key (read_int).
 std::string read_body_key(const BodyField& f, const toml::node& n, BodyInput& in) {
   FieldValue value;
   if (f.type == FieldType::Number) {
@@ -39,8 +39,8 @@ std::string read_body_key(const BodyField& f, const toml::node& n, BodyInput& in
     if (auto r = number_in(f.stands_for, n, v); !r.empty()) return r;
     value = v;
   } else if (f.type == FieldType::Integer) {
-    if (!n.is_integer()) return "expected an integer, got " + toml_type_name(n);
-    const long long i = n.as_integer()->get();
+    long long i = 0;
+    if (auto r = read_int(n, i); !r.empty()) return r;
     if (auto r = bounds_problem(f.stands_for, static_cast<double>(i)); !r.empty()) return r;
     value = i;
   } else if (f.type == FieldType::Choice) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -55,7 +56,24 @@ std::string bounds_problem(std::string_view key, double v) {
   return b && !b->contains(v) ? b->requirement() : "";
 }
 
-namespace {
+std::string unreadable_number(std::string_view text) {
+  size_t k = 0;
+  while (k < text.size()) {
+    const size_t end = text.find_first_of(" \t,[]", k);
+    const std::string token(text.substr(k, end == std::string_view::npos ? text.npos : end - k));
+    k = end == std::string_view::npos ? text.size() : end + 1;
+    if (token.empty() || token.find_first_of("0123456789") == std::string::npos) continue;
+    std::string digits = token;
+    digits.erase(std::remove(digits.begin(), digits.end(), '_'), digits.end());  // TOML's 1_000
+    errno = 0;
+    char* stop = nullptr;
+    const double v = std::strtod(digits.c_str(), &stop);
+    if (stop == digits.c_str() + digits.size() && errno == ERANGE && std::isinf(v))
+      return printable(token, 40) +
+             " is beyond a double's range (about 1.8e308): must be a finite number";
+  }
+  return "";
+}
 
 // ---- typed readers: return "" or a reason -------------------------------------------
 
@@ -73,6 +91,8 @@ std::string read_int(const toml::node& n, long long& out) {
   }
   return "expected an integer, got " + toml_type_name(n);
 }
+
+namespace {
 
 std::string read_bool(const toml::node& n, bool& out) {
   if (!n.is_boolean()) return "expected true or false, got " + toml_type_name(n);

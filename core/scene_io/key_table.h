@@ -44,6 +44,14 @@ std::string read_loops(const toml::node& value, std::vector<Loop>& out);
 std::string read_number(const toml::node& value, double& out);
 // [x, y] of finite numbers into out; "" or the reason ("element 0: must be a finite number").
 std::string read_vec2(const toml::node& value, Vec2& out);
+// An integer key's value into out: a TOML integer, or a number with a whole value (4.0,
+// 1e1) below 1e15 in magnitude; the one rule for every integer key, in a section, a
+// [[body]] table, a pair of node indices or --set. "" or the reason.
+std::string read_int(const toml::node& value, long long& out);
+// Why `text` (a --set value TOML could not parse) is no value when it holds a number
+// beyond a double's range (1e400, [0, -1e400]): "1e400 is beyond a double's range (about
+// 1.8e308): must be a finite number"; "" when it holds none.
+std::string unreadable_number(std::string_view text);
 // "" when v is within the core's range for `key` ("mesh.side"), else the requirement.
 std::string bounds_problem(std::string_view key, double v);
 

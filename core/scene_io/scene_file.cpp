@@ -252,7 +252,13 @@ SceneLoad load_scene(const std::string& name_or_path) {
   return parse_scene_toml(text, name_or_path);
 }
 
-std::string apply_override(SceneDef& s, std::string_view assignment) {
+namespace {
+
+// One override read into `s` and `material` (the material keys wait for apply_material):
+// its type and its own range checked, the scene as a whole not. Returns "" or the error;
+// *lhs is "section.key".
+std::string read_override(SceneDef& s, MaterialInput& material, std::string_view assignment,
+                          std::string* lhs_out) {
   const std::string where = "--set " + printable(assignment);
   const size_t eq = assignment.find('=');
   if (eq == std::string_view::npos) return where + ": expected section.key=value";
@@ -269,7 +275,7 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   const SceneField* spec = find_scene_field(section, key);
   if (!spec) return where + ": " + printable(lhs) + ": " + unknown_key_error(section, key);
   // The value in TOML syntax; failing that, a bare word stands for a string
-  // (--set material.model=linear).
+  // (--set material.model=linear) where the key takes one.
   auto parse_value = [](const std::string& text, toml::table& out) {
     int line = 0;
     std::string safe_text;
@@ -283,6 +289,11 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   };
   toml::table parsed;
   if (!parse_value("v = " + rhs, parsed)) {
+    // A number TOML refuses (beyond a double's range) is not a bare word, where the key
+    // takes no text.
+    if (spec->type != FieldType::Text && spec->type != FieldType::Choice)
+      if (const std::string e = scene_io::unreadable_number(rhs); !e.empty())
+        return where + ": " + lhs + ": " + e;
     std::string escaped;
     for (char c : rhs) {
       if (c == '"' || c == '\\') escaped += '\\';
@@ -294,25 +305,62 @@ std::string apply_override(SceneDef& s, std::string_view assignment) {
   // "v = 1\n[mesh]\nside = 2" parses, but is not one value.
   if (parsed.size() != 1 || !parsed.get("v"))
     return where + ": " + lhs + ": expected a single value";
+  if (auto r = apply_key(s, *spec, *parsed.get("v"), material); !r.empty())
+    return where + ": " + lhs + ": " + r;
+  *lhs_out = lhs;
+  return "";
+}
+
+}  // namespace
+
+std::string apply_overrides(SceneDef& s, std::span<const std::string> assignments) {
+  // Every override is read first, then the scene is checked once as a whole: a state that
+  // is valid only after several of them (a box's min and max, a term and its keys) is
+  // reachable in any order. Errors name the --set of the key they blame.
   SceneDef candidate = s;
   MaterialInput material;
-  if (auto r = apply_key(candidate, *spec, *parsed.get("v"), material); !r.empty())
-    return where + ": " + lhs + ": " + r;
+  std::map<std::string, std::string> written;  // "section.key" -> its last --set
+  for (const std::string& assignment : assignments) {
+    std::string lhs;
+    if (auto e = read_override(candidate, material, assignment, &lhs); !e.empty()) return e;
+    written[lhs] = assignment;
+  }
+  if (assignments.empty()) return "";
+  auto where = [&](const std::string& key) {
+    const auto it = written.find(key);
+    return "--set " + printable(it != written.end() ? it->second : assignments.back()) + ": ";
+  };
+  auto written_in = [&](std::string_view section) -> std::string {
+    for (const auto& [key, assignment] : written)
+      if (key.rfind(std::string(section) + ".", 0) == 0) return key;
+    return "";
+  };
   // Asking for self-contact where it cannot run is refused; another key that makes it
   // unable to ([mass_spring], [fixed]) leaves it inactive.
-  if (section == "self_contact")
+  if (const std::string key = written_in("self_contact"); !key.empty())
     if (const auto problem = self_contact_refusal(candidate))
-      return where + ": " + problem->key + ": " + problem->reason;
-  if (auto r = apply_material(candidate, material); !r.empty()) return where + ": " + r;
+      return where(key) + problem->key + ": " + problem->reason;
+  if (auto r = apply_material(candidate, material); !r.empty())
+    return where(r.substr(0, r.find(':'))) + r;
   // A new file, path, scale or shape is read now, relative to the current directory (the
   // scene's own files were resolved when it was loaded).
-  if (section == "mesh" && (key == "file" || key == "path_id" || key == "scale" || key == "shape"))
-    if (auto r = scene_io::load_shape_files(candidate, "--set"); !r.empty())
-      return where + ": " + r;
-  if (const auto problem = find_scene_problem(candidate))
-    return where + ": " + blame(*problem, [&](const std::string& k) { return k == lhs; }).message;
+  for (const char* key : {"mesh.file", "mesh.path_id", "mesh.scale", "mesh.shape"})
+    if (written.count(key)) {
+      if (auto r = scene_io::load_shape_files(candidate, "--set"); !r.empty())
+        return where(r.substr(0, r.find(':'))) + r;
+      break;
+    }
+  if (const auto problem = find_scene_problem(candidate)) {
+    const Blame b = blame(*problem, [&](const std::string& k) { return written.count(k) > 0; });
+    return where(b.key) + b.message;
+  }
   s = std::move(candidate);
   return "";
+}
+
+std::string apply_override(SceneDef& s, std::string_view assignment) {
+  const std::string one(assignment);
+  return apply_overrides(s, std::span<const std::string>(&one, 1));
 }
 
 std::string scene_to_toml(const SceneDef& s) {

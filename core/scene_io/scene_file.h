@@ -8,6 +8,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -29,6 +30,12 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source);
 // Applies "section.key=value" (value in TOML syntax, strings may be unquoted).
 // Returns "" on success, otherwise a one-line error; the scene is unchanged then.
 std::string apply_override(SceneDef& scene, std::string_view assignment);
+// Applies several in order, each value read and checked alone (its type, its key's range),
+// then validates the resulting scene once: a scene valid only after several of them
+// (fixed.box_min with fixed.box_max, fixed.enabled with fixed.corners) is reached in any
+// order. Returns "" or a one-line error naming the --set of the key it blames; the scene is
+// unchanged then.
+std::string apply_overrides(SceneDef& scene, std::span<const std::string> assignments);
 // Serialises a scene as a TOML file that parse_scene_toml reads back to the same scene.
 std::string scene_to_toml(const SceneDef& scene);
 
