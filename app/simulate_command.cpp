@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
 #include <utility>
 
 #include "app/cli_checks.h"
@@ -100,17 +101,38 @@ void write_csv_row(std::ostream& csv, const Simulation& sim, const StepReport& r
       << r.wall_ms << "\n";
 }
 
+// The range of det F over every state of the run: the initial one and each accepted step's
+// (a step whose det F is not finite fails, so the range is of numbers).
+struct RunDetFRange {
+  double lo = INFINITY, hi = -INFINITY;
+  void add(const Simulation& sim) {
+    if (sim.mesh.triangle_count() == 0) return;
+    const auto [l, h] = det_f_range(sim);
+    lo = std::min(lo, l);
+    hi = std::max(hi, h);
+  }
+};
+
+// det F for people: four decimals, or four significant digits where that would be long.
+std::string det_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, std::abs(v) < 1e5 ? "%.4f" : "%.4g", v);
+  return buf;
+}
+
 // The one-line summary on stdout: steps, time, mean Newton iterations and ms per step,
-// the final det F range.
-void print_summary(const Simulation& sim, long total_iterations, double total_ms) {
+// the range of det F over the run (every state from step 0 on).
+void print_summary(const Simulation& sim, const RunDetFRange& range, long total_iterations,
+                   double total_ms) {
   const long done = sim.step_count;
-  const auto [lo, hi] = det_f_range(sim);
-  char det[64] = "no triangles";
+  std::string det = "no triangles";
   if (sim.mesh.triangle_count() > 0)
-    std::snprintf(det, sizeof det, "det F in [%.4f, %.4f]", lo, hi);
+    det = "det F in [" + det_text(range.lo) + ", " + det_text(range.hi) + "] over steps 0.." +
+          std::to_string(done);
   std::printf("%s: %ld steps, t = %.3f s, %.2f Newton iterations/step, %.3f ms/step, %s\n",
               sim.scene.name.c_str(), done, sim.time,
-              done ? double(total_iterations) / done : 0.0, done ? total_ms / done : 0.0, det);
+              done ? double(total_iterations) / done : 0.0, done ? total_ms / done : 0.0,
+              det.c_str());
   flush_standard_output();
 }
 
@@ -169,12 +191,15 @@ int run_simulate(const SimulateOptions& opt) {
   // step or Ctrl-C does, keeps the CSV complete for the steps whose OBJ was written.
   std::string obj_error = write_obj();
   CrossingWatch crossings(sim);
+  RunDetFRange det_range;
+  det_range.add(sim);
   for (int k = 0; obj_error.empty() && k < opt.steps && !interrupted(); ++k) {
     const StepReport r = step(sim);
     if (r.status != StepStatus::Ok) {
       if (!interrupted()) failure = r;  // else a signal stopped Newton: an interruption
       break;
     }
+    det_range.add(sim);
     total_iterations += r.newton_iterations;
     total_ms += r.wall_ms;
     // After the warning only the CSV needs the check.
@@ -196,7 +221,7 @@ int run_simulate(const SimulateOptions& opt) {
                 obj_error + (kept >= 0 ? "; outputs hold steps 0.." + std::to_string(kept) : ""));
   }
   const long done = sim.step_count;
-  print_summary(sim, total_iterations, total_ms);
+  print_summary(sim, det_range, total_iterations, total_ms);
   if (failure.status != StepStatus::Ok)
     return fail(exit_code::kRunFailed, step_failure_message(sim, failure));
   if (interrupted())

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <type_traits>
 #include <limits>
 
 #include "collision/intersection_check.h"
@@ -76,6 +78,69 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
     measure_clearance(ws.boundary, sim.mesh.rest, x, {s.dhat, s.kappa}, ws.caches.grid,
                       cache.clearance);
   }
+  return StepStatus::Ok;
+}
+
+// What a step reports about the state it accepted, each a number or the step fails
+// (check_reported_quantities): finite positions can still overflow a product of them, a
+// kinetic energy of m v^2 at v = 1e200 m/s, springs' energy at a huge stiffness, or det F.
+struct ReportedState {
+  double kinetic = 0.0, elastic = 0.0, gravitational = 0.0, contact = 0.0;
+};
+
+// The accepted state's energies as energy_report_of adds them, from the step's own terms
+// (no allocation), except self-contact's barrier: its candidates need a broad phase, and
+// check_invariants has just proved every node-edge distance positive, where it is finite.
+ReportedState reported_energies(const Simulation& sim, const VecX& z, const VecX& v) {
+  StepWorkspace& ws = *sim.workspace;
+  const StepProblem& p = ws.problem;
+  ReportedState r;
+  for (int i = 0; i < p.node_count(); ++i)
+    r.kinetic += 0.5 * (*p.mass)[i] * v.segment<2>(2 * i).squaredNorm();
+  auto reported = [](EnergyKind k) {
+    return k == EnergyKind::Elastic || k == EnergyKind::Gravity || k == EnergyKind::Contact;
+  };
+  EnergyBins bins;
+  for (int i = 0; i < p.node_count(); ++i) {
+    const NodeState s = p.node_state(z.data(), i);
+    p.for_each_node_term([&](const auto& term) {
+      if (term.on && reported(term.kind)) bins[term.kind] += term.value(s);
+    });
+  }
+  const TermPoint at = term_point(p, ws.caches, z);
+  p.for_each_mesh_term([&](const auto& term) {
+    using T = std::decay_t<decltype(term)>;
+    if constexpr (!HasBegin<T>)
+      if (term.on && reported(T::kind)) bins[T::kind] += term.value(at, 1.0);
+  });
+  r.elastic = bins[EnergyKind::Elastic];
+  r.gravitational = bins[EnergyKind::Gravity];
+  r.contact = bins[EnergyKind::Contact];
+  return r;
+}
+
+// Every quantity the step reports (simulate's CSV and summary, render's and live's labels)
+// is a number: the energies of the accepted state, every triangle's det F, the step's own
+// energy and residual. Otherwise NonFinite, naming the first that is not.
+StepStatus check_reported_quantities(const Simulation& sim, const ReportedState& e,
+                                     const StepReport& report, const VecX& x,
+                                     std::string* message) {
+  auto fail = [&](const std::string& what, double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    *message = what + " is not finite (" + text + ")";
+    return StepStatus::NonFinite;
+  };
+  if (!std::isfinite(e.kinetic)) return fail("the kinetic energy", e.kinetic);
+  if (!std::isfinite(e.elastic)) return fail("the elastic energy", e.elastic);
+  if (!std::isfinite(e.gravitational)) return fail("the gravitational energy", e.gravitational);
+  if (!std::isfinite(e.contact)) return fail("the contact energy", e.contact);
+  if (!std::isfinite(report.energy)) return fail("the step's energy", report.energy);
+  if (!std::isfinite(report.residual)) return fail("the Newton residual", report.residual);
+  for (int t = 0; t < sim.mesh.triangle_count(); ++t)
+    if (const double det = triangle_deformation_gradient(sim.mesh, x.data(), t).determinant();
+        !std::isfinite(det))
+      return fail("det F of triangle " + std::to_string(t), det);
   return StepStatus::Ok;
 }
 
@@ -199,12 +264,8 @@ StepReport symplectic_euler_step(Simulation& sim, double& ceiling_new) {
     v_new.segment<2>(2 * i) += s.h / sim.node_mass[i] * Vec2(-grad[2 * i], -grad[2 * i + 1]);
   for (int dof : ws.problem.fixed.dofs) v_new[dof] = 0.0;
   ws.x_new = sim.x + s.h * v_new;
-  // total_energy at the step's start, from the terms just built (no allocation).
-  VecX& z = ws.z;
-  z.head(2 * n) = sim.x;
-  if (s.has_ceiling) z[2 * n] = sim.ceiling_y;
-  const EnergyReport e = energy_report_of(ws.problem, ws.caches, z, sim.v);
-  report.energy = e.kinetic + e.elastic + e.gravitational;
+  // report.energy, the accepted state's kinetic + elastic + gravitational energy, is set
+  // by step() with the check of every reported quantity.
   return report;
 }
 
@@ -299,6 +360,19 @@ StepReport step(Simulation& sim) {
   }
   if (report.status == StepStatus::Ok)
     report.status = check_invariants(sim, ws.x_new, ws.v_new, ceiling_new, &report.message);
+  if (report.status == StepStatus::Ok) {
+    // The accepted state as z = [x; c] for its energies.
+    const int n = sim.mesh.node_count();
+    VecX& z = ws.z;
+    z.head(2 * n) = ws.x_new;
+    if (sim.scene.has_ceiling) z[2 * n] = ceiling_new;
+    const ReportedState e = reported_energies(sim, z, ws.v_new);
+    // Symplectic Euler has no incremental potential: its energy is the accepted state's
+    // kinetic + elastic + gravitational energy.
+    if (sim.scene.integrator == Integrator::SymplecticEuler)
+      report.energy = e.kinetic + e.elastic + e.gravitational;
+    report.status = check_reported_quantities(sim, e, report, ws.x_new, &report.message);
+  }
   if (report.status == StepStatus::Ok) {
     sim.x.swap(ws.x_new);
     sim.v.swap(ws.v_new);
