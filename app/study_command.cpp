@@ -6,11 +6,14 @@
 // study.png and DIR/study-exact.csv; and the course's chapter 9: the reduced bases' error to
 // the full model against ms per step (app/study/reduced_study.h), a panel of study.png and
 // DIR/study-reduced.csv. Progress goes to stderr, a summary to stdout.
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "app/command.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/format_number.h"
 #include "app/interrupt.h"
 #include "app/output_files.h"
 #include "app/plot/chart.h"
@@ -64,15 +67,33 @@ int run_study_command(const StudyCommandOptions& opt) {
 
   int failed = 0;
   for (const StudyRow& r : result.rows) failed += r.failure != "ok";
+  const std::string slope = std::isfinite(result.lecture_slope)
+                                ? format_number(result.lecture_slope, "%.2f")
+                                : std::string("none (no run to fit)");
   std::printf(
-      "study of %s: %zu runs (%d failed), implicit Euler error slope %.2f, %.1f s in the solver; "
+      "study of %s: %zu runs (%d failed), implicit Euler error slope %s, %.1f s in the solver; "
       "%zu static solves against the exact answer; %zu runs of reduced bases; wrote %s, %s, "
       "%s, %s, %s\n",
-      scene->name.c_str(), result.rows.size(), failed, result.lecture_slope, result.total_wall_s,
+      scene->name.c_str(), result.rows.size(), failed, slope.c_str(), result.total_wall_s,
       exact.rows.size(), reduced.rows.size(), csv_path.c_str(), exact_path.c_str(),
       reduced_path.c_str(), png_path.c_str(), sweeps_path.c_str());
   for (const std::string& f : result.reference_failures)
     std::fprintf(stderr, "invfree: warning: %s\n", f.c_str());
+  flush_standard_output();
+  if (every_run_failed(result)) {
+    // The first failure says why (they usually share it).
+    std::string first;
+    for (const StudyRow& r : result.rows)
+      if (r.failure != "ok" && r.failure != "n/a") {
+        first = r.method + " at h = " + format_number(r.h, "%.4g") + " s: " + r.failure +
+                (r.fail_step > 0 ? " at step " + std::to_string(r.fail_step) : "") +
+                (r.message.empty() ? "" : " (" + r.message + ")");
+        break;
+      }
+    return fail(exit_code::kRunFailed,
+                "study of " + scene->name + ": every run failed" +
+                    (first.empty() ? "" : "; the first: " + first) + "; the charts say so");
+  }
   return exit_code::kOk;
 }
 

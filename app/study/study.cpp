@@ -330,6 +330,11 @@ StudyResult run_study(const SceneDef& scene, const SweepOptions& options) {
   return study.result;
 }
 
+bool every_run_failed(const StudyResult& result) {
+  return std::none_of(result.rows.begin(), result.rows.end(),
+                      [](const StudyRow& row) { return row.failure == "ok"; });
+}
+
 std::string study_csv(const StudyResult& result) {
   std::ostringstream o;
   o << "method,h,tol,n_seg,wall_s,error,newton_iters,failure\n";

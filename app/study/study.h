@@ -56,6 +56,11 @@ StudyResult run_study(const SceneDef& scene, const SweepOptions& options);
 
 std::string study_csv(const StudyResult& result);
 
+// No run of the scene's sweeps ended ok (the n/a rows, which never ran, aside; a study
+// with no run at all too): study.png's panels say so in their titles, and `invfree study`
+// exits 3.
+bool every_run_failed(const StudyResult& result);
+
 // Which sweep a row belongs to (a row can be in several: the base point is in all).
 bool in_h_sweep(const StudyResult& r, const StudyRow& row);
 bool in_tol_sweep(const StudyResult& r, const StudyRow& row);

@@ -324,14 +324,29 @@ ChartSpec mesh_panel(const StudyResult& r) {
   return d;
 }
 
+// A study whose every run failed has no point to plot: each panel says so first, in its
+// title, rather than show empty axes and a slope of nan.
+std::vector<ChartSpec> marked_if_all_failed(const StudyResult& r, std::vector<ChartSpec> panels) {
+  if (!every_run_failed(r)) return panels;
+  for (ChartSpec& panel : panels) {
+    panel.title = "EVERY RUN FAILED (no error to plot; the notes list how each ended): " +
+                  panel.title;
+    panel.notes.insert(panel.notes.begin(),
+                       "Every run of " + r.scene.name +
+                           " failed, so nothing is plotted and no slope was fitted; "
+                           "`invfree study` exited with status 3.");
+  }
+  return panels;
+}
+
 }  // namespace
 
 std::vector<ChartSpec> study_panels(const StudyResult& r) {
-  return {speed_accuracy_panel(r), convergence_panel(r)};
+  return marked_if_all_failed(r, {speed_accuracy_panel(r), convergence_panel(r)});
 }
 
 std::vector<ChartSpec> sweeps_panels(const StudyResult& r) {
-  return {tolerance_panel(r), mesh_panel(r)};
+  return marked_if_all_failed(r, {tolerance_panel(r), mesh_panel(r)});
 }
 
 }  // namespace invfree

@@ -84,12 +84,19 @@ void RunMonitor::start(const Simulation& sim, double duration) {
   for (double m : sim.node_mass) mass += m;
   const double L = scene_length_scale(sim.scene);
   minimum_budget = 1e-6 * mass * L * L;  // 1e-6 J per kg m^2 s^-2: far below any real motion
-  Vec2 c = Vec2::Zero();
-  for (int i = 0; i < sim.mesh.node_count(); ++i) c += sim.x.segment<2>(2 * i);
-  box_center = c / sim.mesh.node_count();
+  // The box follows the scene: around every node's start (bodies far apart are one
+  // scene), grown by 10 L and by how far the fastest node and gravity could carry a node
+  // in the run (every body's own velocity, not only initial.velocity).
+  Eigen::AlignedBox2d start_box;
+  double speed = 0.0;
+  for (int i = 0; i < sim.mesh.node_count(); ++i) {
+    start_box.extend(Vec2(sim.x.segment<2>(2 * i)));
+    speed = std::max(speed, sim.v.segment<2>(2 * i).norm());
+  }
+  box_center = start_box.center();
   const double g = sim.scene.has_gravity ? sim.scene.gravity.norm() : 0.0;
-  box_radius =
-      10.0 * L + sim.scene.initial_velocity.norm() * duration + 0.5 * g * duration * duration;
+  box_radius = 0.5 * start_box.sizes().maxCoeff() + 10.0 * L + speed * duration +
+               0.5 * g * duration * duration;
   const auto det = triangle_det_f(sim);
   started_inverted = std::any_of(det.begin(), det.end(), [](double d) { return !(d > 0.0); });
   recovered = !started_inverted;
@@ -108,7 +115,7 @@ Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
   for (int i = 0; i < sim.mesh.node_count(); ++i)
     if ((sim.x.segment<2>(2 * i) - box_center).lpNorm<Eigen::Infinity>() > box_radius) {
       *why = "node " + std::to_string(i) + " left the bounding box (" +
-             format_for_people(box_radius) + " m around the start)";
+             format_for_people(box_radius) + " m around the nodes' start)";
       return Verdict::BlewUp;
     }
   const double e = total_energy(sim);
