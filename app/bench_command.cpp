@@ -69,6 +69,9 @@ struct BenchOptions {
 struct BenchRow {
   int n_seg = 0, nodes = 0, triangles = 0, dofs = 0, steps = 0;
   double mean_ms = 0, median_ms = 0, newton = 0;
+  // The slowest step (ms, 1-based step): what a viewer sees as a stall, against the median.
+  double max_ms = 0;
+  int max_step = 0;
   // The step that took the most Newton iterations (1-based) and how many: how close the
   // run came to Newton's iteration cap (at n_seg 256, the fold steps near step 250).
   int newton_worst = 0, newton_worst_step = 0;
@@ -205,6 +208,11 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
       return false;
     }
     const StepReport r = step(sim);
+    if (r.status != StepStatus::Ok && interrupted()) {  // a signal stopped Newton mid-step
+      *error = "interrupted at n_seg " + std::to_string(n_seg);
+      *code = interrupted_exit_code();
+      return false;
+    }
     if (r.status != StepStatus::Ok) {
       *error = "n_seg " + std::to_string(n_seg) + ": step " + std::to_string(k + 1) +
                " failed: " + step_status_name(r.status) + ": " + r.message;
@@ -213,6 +221,10 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
       break;
     }
     ms.push_back(r.wall_ms);
+    if (r.wall_ms > row.max_ms) {
+      row.max_ms = r.wall_ms;
+      row.max_step = k + 1;
+    }
     if (hashes) row.step_hashes.push_back(positions_hash(sim));
     newton += r.newton_iterations;
     if (r.newton_iterations > row.newton_worst) {
@@ -258,7 +270,7 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
   o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,newton_worst,"
        "newton_worst_step,assembly_ms,factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,"
        "factorizations_per_step,solver,self_contact_ms,mesh_ms,full_median_ms,"
-       "full_newton_per_step,threads,speedup,efficiency\n";
+       "full_newton_per_step,threads,speedup,efficiency,max_ms,max_step\n";
   for (const auto& r : rows)
     o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
       << format_number(r.mean_ms, "%.6g") << "," << format_number(r.median_ms, "%.6g") << ","
@@ -271,7 +283,7 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
       << (r.full_median_ms > 0 ? format_number(r.full_median_ms, "%.6g") : "") << ","
       << (r.full_median_ms > 0 ? format_number(r.full_newton, "%.5g") : "") << "," << r.threads
       << "," << format_number(r.speedup, "%.5g") << "," << format_number(r.efficiency, "%.5g")
-      << "\n";
+      << "," << format_number(r.max_ms, "%.6g") << "," << r.max_step << "\n";
   return o.str();
 }
 
@@ -460,7 +472,8 @@ int bisect_fps(const SceneDef& scene, int lo, int hi, int steps, double budget_m
 void print_header(bool threads) {
   std::printf("%-6s ", "n_seg");
   if (threads) std::printf("%7s ", "threads");
-  std::printf("%8s %10s %6s %10s %10s ", "dofs", "triangles", "steps", "median_ms", "mean_ms");
+  std::printf("%8s %10s %6s %10s %10s %10s ", "dofs", "triangles", "steps", "median_ms", "mean_ms",
+              "max_ms");
   if (threads) std::printf("%7s %6s ", "speedup", "effic");
   std::printf("%7s %6s %9s %9s %9s %9s %9s %6s %9s  %s\n", "newton", "worst", "assembly", "factor",
               "solve", "search", "contact", "pcg", "mesh_ms", "solver");
@@ -476,8 +489,8 @@ void print_row(const BenchRow& row, bool reference, bool threads) {
               format_number(row.full_median_ms / row.median_ms, "%.3g") + "x faster reduced";
   std::printf("%-6d ", row.n_seg);
   if (threads) std::printf("%7d ", row.threads);
-  std::printf("%8d %10d %6d %10.4f %10.4f ", row.dofs, row.triangles, row.steps, row.median_ms,
-              row.mean_ms);
+  std::printf("%8d %10d %6d %10.4f %10.4f %10.4f ", row.dofs, row.triangles, row.steps,
+              row.median_ms, row.mean_ms, row.max_ms);
   if (threads) std::printf("%6.3fx %6.3f ", row.speedup, row.efficiency);
   std::printf("%7.2f %6d %9.4f %9.4f %9.4f %9.4f %9.4f %6.2f %9.3f  %s%s\n", row.newton,
               row.newton_worst, row.assembly, row.factor, row.solve, row.line_search,

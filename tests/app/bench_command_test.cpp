@@ -155,6 +155,12 @@ TEST(BenchCommand, AThreadListRunsEverySizeAtEveryCount) {
     EXPECT_EQ(std::stoi(row[col("n_seg")]), n_seg[k]);
     EXPECT_EQ(std::stoi(row[col("threads")]), threads[k]);
     EXPECT_EQ(std::stoi(row[col("steps")]), 4);
+    // The slowest step: no faster than the median or the mean, and one of the 4 steps.
+    const double max_ms = std::stod(row[col("max_ms")]);
+    EXPECT_GE(max_ms, std::stod(row[col("median_ms")]) * (1 - 1e-5));
+    EXPECT_GE(max_ms, std::stod(row[col("mean_ms")]) * (1 - 1e-5));
+    EXPECT_GE(std::stoi(row[col("max_step")]), 1);
+    EXPECT_LE(std::stoi(row[col("max_step")]), 4);
     const double speedup = std::stod(row[col("speedup")]);
     const double efficiency = std::stod(row[col("efficiency")]);
     if (threads[k] == 1) {
