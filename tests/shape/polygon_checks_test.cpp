@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -92,7 +91,9 @@ TEST(PolygonChecks, PointInLoopIsExactOnTheBoundary) {
   EXPECT_EQ(winding_number(Vec2(0.5, 0.5), l), 1);
 }
 
-TEST(PolygonChecks, TwentyThousandPointsWellUnderASecond) {
+// Their cost is measured, not asserted: build/release/tests/shape/invfree_shape_bench
+// --benchmark_filter=validate_outline.
+TEST(PolygonChecks, TwentyThousandPointsPassAndOneCrossingIsNamed) {
   // A wavy circle of 20,000 points and a star whose edges all meet near the centre.
   const int n = 20000;
   Loop wavy(n), star(n);
@@ -103,11 +104,8 @@ TEST(PolygonChecks, TwentyThousandPointsWellUnderASecond) {
     const double rs = k % 2 ? 1.0 : 1e-3;
     star[k] = Vec2(rs * std::cos(t), rs * std::sin(t));
   }
-  auto t0 = std::chrono::steady_clock::now();
   EXPECT_EQ(check_loop(wavy, "outline"), "");
   EXPECT_EQ(check_loop(star, "outline"), "");
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  EXPECT_LT(s, 1.0);
   // One crossing in 20,000 points is found and named.
   std::swap(wavy[100], wavy[101]);
   EXPECT_EQ(check_loop(wavy, "outline"), "outline: edges 99 and 101 cross (self-intersecting)");

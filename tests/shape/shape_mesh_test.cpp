@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -282,14 +281,14 @@ TEST(ShapeMesh, BadInputsGiveOneReason) {
   EXPECT_EQ(mesh_shape(ShapeDef{}, 0.1).error.rfind("shape: ", 0), 0u);
 }
 
-TEST(ShapeMesh, MaxEdgeOverTheCapIsRefusedFast) {
-  const auto t0 = std::chrono::steady_clock::now();
+// Refused from the area estimate, before any meshing (no time limit here: a test asserts
+// no wall-clock figure; ctest's timeout catches a hang).
+TEST(ShapeMesh, MaxEdgeOverTheCapIsRefusedBeforeMeshing) {
   const ShapeMeshResult r = mesh_shape(disk(), 1e-5);
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(r.error,
             "max_edge: 1e-05 m would give about 40,000,000,000 triangles, more than the cap of "
             "2,000,000");
-  EXPECT_LT(s, 0.1);
+  EXPECT_EQ(r.mesh.triangle_count(), 0);
   EXPECT_EQ(mesh_shape(rectangle(), 1e-300).error,
             "max_edge: 1e-300 m would give far more triangles than the cap of 2,000,000");
 }
@@ -322,18 +321,15 @@ TEST(ShapeMesh, SharpInputCornerStillEnds) {
 
 TEST(ShapeMesh, RunawayRefinementStopsWithAnError) {
   // 1000 m by 1 mm at max_edge 1 m: the area estimate is 5 triangles, but good angles in
-  // the strip need about two million; the step budget stops it (0.7 s in release on a
-  // loaded 2-core machine, 8 s under AddressSanitizer: the bound only rules out a hang).
+  // the strip need about two million; the step budget stops it with this error (ctest's
+  // timeout would catch a hang; no wall-clock figure is asserted).
   ShapeDef s;
   s.kind = ShapeKind::Rectangle;
   s.width = 1000;
   s.height = 1e-3;
-  const auto t0 = std::chrono::steady_clock::now();
   const ShapeMeshResult r = mesh_shape(s, 1.0);
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(r.error.rfind("max_edge: meshing stopped after ", 0), 0u) << r.error;
   EXPECT_EQ(r.mesh.triangle_count(), 0);
-  EXPECT_LT(secs, 60.0);
 }
 
 }  // namespace
