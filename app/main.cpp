@@ -7,12 +7,14 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <system_error>
 
 #include "app/cli_suggestions.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
 #include "app/output_files.h"
+#include "app/process_limits.h"
 #include "linalg/parallel.h"
 #include "solver/newton_interrupt.h"
 
@@ -41,6 +43,7 @@ ThreadVariable read_thread_variable() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  invfree::prepare_for_resource_limits(argv);  // first: may execute the program again
   invfree::install_interrupt_handlers();
   invfree::set_newton_interrupt_check(&invfree::interrupted);  // one long step stops too
   CLI::App app{
@@ -87,6 +90,16 @@ int main(int argc, char** argv) {
     return invfree::exit_code::kBadInput;
   } catch (const std::bad_alloc&) {  // never an exception trace or an abort
     std::fprintf(stderr, "invfree: out of memory\n");
+    return invfree::exit_code::kRunFailed;
+  } catch (const std::system_error& e) {  // std::thread: no thread could be made
+    if (e.code() != std::errc::resource_unavailable_try_again) {
+      std::fprintf(stderr, "invfree: internal error: %s\n", e.what());
+      return invfree::exit_code::kRunFailed;
+    }
+    std::fprintf(stderr,
+                 "invfree: cannot start a thread: %s (a process-count or memory limit: ulimit "
+                 "-u, -v)\n",
+                 e.code().message().c_str());
     return invfree::exit_code::kRunFailed;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "invfree: internal error: %s\n", e.what());

@@ -1,7 +1,12 @@
 #include "linalg/parallel.h"
 
+#include <pthread.h>
+#include <sys/resource.h>
+
 #include <memory>
 #include <mutex>
+#include <new>
+#include <system_error>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -29,10 +34,39 @@ std::mutex g_pool_mutex;
 std::unique_ptr<ThreadPool> g_pool;
 int g_thread_count = 0;  // set_thread_count's setting; 0: one per core
 
+// Under an address-space limit (ulimit -v) the workers' stacks may take a quarter of it
+// at most, so that a pool of many threads leaves room for the rest of the program (the
+// offscreen renderer needs hundreds of MB).
+int threads_within_address_space(int threads) {
+  struct rlimit limit {};
+  if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return threads;
+  size_t stack = 8u << 20;
+  pthread_attr_t attr;
+  if (::pthread_attr_init(&attr) == 0) {
+    ::pthread_attr_getstacksize(&attr, &stack);
+    ::pthread_attr_destroy(&attr);
+  }
+  const rlim_t workers = limit.rlim_cur / 4 / std::max<size_t>(stack, 1);
+  return static_cast<int>(std::min<rlim_t>(static_cast<rlim_t>(threads), workers + 1));
+}
+
 }  // namespace
 
+// A thread that cannot be made (a process limit: ulimit -u, or an address-space limit
+// too small for its stack) ends the pool's growth: it runs with the workers it has, the
+// caller's thread at least. The results do not change (tasks never depend on the thread
+// count: see parallel.h); only the speed does.
 ThreadPool::ThreadPool(int threads) {
-  for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { worker_loop(); });
+  threads = threads_within_address_space(threads);
+  for (int i = 1; i < threads; ++i) {
+    try {
+      workers_.emplace_back([this] { worker_loop(); });
+    } catch (const std::system_error&) {  // pthread_create failed (EAGAIN)
+      break;
+    } catch (const std::bad_alloc&) {  // the thread's state could not be allocated
+      break;
+    }
+  }
 }
 
 ThreadPool::~ThreadPool() {
