@@ -122,13 +122,31 @@ class Process {
     }
   }
   pid_t pid() const { return pid_; }
+  // Waits at most `seconds` (a guard against a hang, not a timing check): false when the
+  // process has not exited by then (the destructor kills it).
+  bool exits_within(int seconds) {
+    if (pid_ <= 0 || waited_) return true;
+    for (int i = 0; i < seconds * 100; ++i) {
+      int status = 0;
+      const pid_t r = ::waitpid(pid_, &status, WNOHANG);
+      if (r == pid_) {
+        waited_ = true;
+        status_ = status;
+        return true;
+      }
+      ::usleep(10000);
+    }
+    return false;
+  }
   ProcessResult wait() {
     ProcessResult r;
     if (pid_ <= 0) return r;
-    int status = 0;
-    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-    }
+    int status = status_;
+    if (!waited_)
+      while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+      }
     waited_ = true;
+    status_ = status;
     r.code = decode_status(status);
     r.out = stdout_captured_ ? slurp(out_path_) : "";
     r.err = slurp(err_path_);
@@ -138,6 +156,7 @@ class Process {
  private:
   pid_t pid_ = -1;
   bool waited_ = false;
+  int status_ = 0;
   std::string out_path_, err_path_;
   bool stdout_captured_ = true;
 };
