@@ -11,10 +11,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -113,8 +113,7 @@ std::string check_mp4(FileBytes& file, int frames) {
         if (type == "ftyp") ftyp = true;
         if (type == "mdat") mdat = true;
         if (type == "moov") moov = true;
-        if (type == "moov" || type == "trak" || type == "mdia" || type == "minf" ||
-            type == "stbl")
+        if (type == "moov" || type == "trak" || type == "mdia" || type == "minf" || type == "stbl")
           return walk_boxes(file, b, e, visit);
         // stsz: version and flags (4), sample_size (4), sample_count (4).
         if (type == "stsz" && e - b >= 12 && !have_samples)
@@ -181,7 +180,9 @@ std::string check_movie_at(int dir_fd, const std::string& name, bool gif, int fr
   const int fd = ::openat(dir_fd, name.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return "it cannot be read";
   FileBytes file(fd);
-  std::string why = file.size() == 0 ? "it is empty" : gif ? check_gif(file) : check_mp4(file, frames);
+  std::string why = file.size() == 0 ? "it is empty"
+                    : gif            ? check_gif(file)
+                                     : check_mp4(file, frames);
   if (size) *size = file.size();
   ::close(fd);
   return why;

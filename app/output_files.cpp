@@ -96,8 +96,7 @@ int output_directory_fd(const std::string& dir) {
 std::string write_file_atomically(const std::string& path, std::string_view data) {
   const Target at = target_of(path);
   const std::string tmp = temporary_name(at.name);
-  const int fd =
-      ::openat(at.dir_fd, tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int fd = ::openat(at.dir_fd, tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) return path + ": cannot create file: " + describe(errno);
   if (const int err = write_all(fd, data); err != 0) {
     ::close(fd);
@@ -309,11 +308,11 @@ OutputError check_outputs_apart(const std::vector<NamedOutput>& files,
     const auto file = comparable_path(files[i].path);
     for (const NamedOutput& d : dirs) {
       if (d.path.empty() || !within(comparable_path(d.path), file)) continue;
-      return bad_input(files[i].option + " " + files[i].path + " and " + d.option + " " + d.path +
-                       ": the file would be " +
-                       (comparable_path(d.path) == file ? "the directory itself"
-                                                        : "a directory above it") +
-                       "; give them different paths");
+      return bad_input(
+          files[i].option + " " + files[i].path + " and " + d.option + " " + d.path +
+          ": the file would be " +
+          (comparable_path(d.path) == file ? "the directory itself" : "a directory above it") +
+          "; give them different paths");
     }
     for (size_t j = i + 1; j < files.size(); ++j)
       if (!files[j].path.empty() && comparable_path(files[j].path) == file)

@@ -104,7 +104,7 @@ class OutputDirectory {
   // through that descriptor, so moving it or putting a symbolic link in its place during
   // the run changes nothing.
   OutputError open(const std::string& dir, bool force);
-  void close();  // removes the lock file and releases the lock
+  void close();                       // removes the lock file and releases the lock
   int fd() const { return dir_fd_; }  // the directory's descriptor, -1 when not open
 
  private:

@@ -68,10 +68,9 @@ TEST(MovieCheck, FileSizeLimitLeavesNoMovie) {
   for (const bool gif : {false, true}) {
     const std::string dir = fresh_dir(gif ? "movie_fsize_gif" : "movie_fsize_mp4") + "/f";
     const std::string movie = gif ? "movie.gif" : "movie.mp4";
-    const ProcessResult r =
-        run_invfree({"render", "--frames", "40", "--size", "64x64", gif ? "--gif" : "--mp4",
-                     "--out", dir},
-                    {}, "ulimit -f 4;");
+    const ProcessResult r = run_invfree(
+        {"render", "--frames", "40", "--size", "64x64", gif ? "--gif" : "--mp4", "--out", dir}, {},
+        "ulimit -f 4;");
     EXPECT_EQ(r.code, 4) << r.err;
     EXPECT_EQ(last_line(r.err).rfind("invfree: " + dir + "/" + movie +
                                          ": write failed: File too large (file-size limit "
@@ -120,8 +119,8 @@ TEST(MovieCheck, FullDiskLeavesNoMovie) {
 TEST(MovieCheck, EveryTruncationIsRefused) {
   if (!have_ffmpeg()) GTEST_SKIP() << "ffmpeg is not installed";
   const std::string dir = fresh_dir("movie_cut") + "/f";
-  const ProcessResult r = run_invfree(
-      {"render", "--frames", "12", "--size", "64x64", "--mp4", "--gif", "--out", dir});
+  const ProcessResult r =
+      run_invfree({"render", "--frames", "12", "--size", "64x64", "--mp4", "--gif", "--out", dir});
   ASSERT_EQ(r.code, 0) << r.err;
   for (const bool gif : {false, true}) {
     const std::string movie = dir + (gif ? "/movie.gif" : "/movie.mp4");
@@ -149,8 +148,8 @@ TEST(LockFile, AHardLinkOrAForeignFileIsRefusedAndLeftAsItWas) {
   fs::create_directory(dir + "/obj");
   fs::create_hard_link(scene, dir + "/obj/.invfree.lock");
   for (const bool force : {false, true}) {
-    std::vector<std::string> args = {"simulate", "--scene", scene, "--steps", "1",
-                                     "--obj",    dir + "/obj"};
+    std::vector<std::string> args = {"simulate", "--scene", scene,       "--steps",
+                                     "1",        "--obj",   dir + "/obj"};
     if (force) args.push_back("--force");
     const ProcessResult r = run_invfree(args);
     EXPECT_EQ(r.code, 2) << r.err;
@@ -182,8 +181,8 @@ TEST(LockFile, AHardLinkOrAForeignFileIsRefusedAndLeftAsItWas) {
 TEST(ResourceLimits, ThreadsThatCannotBeMadeMeanFewerThreads) {
   SKIP_UNDER_ASAN();
   const std::string dir = fresh_dir("threads_limit");
-  ProcessResult r = run_invfree({"simulate", "--steps", "30", "--obj", dir + "/one"},
-                                {"INVFREE_THREADS=1"});
+  ProcessResult r =
+      run_invfree({"simulate", "--steps", "30", "--obj", dir + "/one"}, {"INVFREE_THREADS=1"});
   ASSERT_EQ(r.code, 0) << r.err;
   r = run_invfree({"simulate", "--steps", "30", "--obj", dir + "/many"}, {"INVFREE_THREADS=256"},
                   "ulimit -v 1500000;");
@@ -206,8 +205,8 @@ TEST(ResourceLimits, AProcessCountLimitMeansFewerThreads) {
   SKIP_UNDER_ASAN();
   const std::string dir = fresh_dir("nproc_limit");
   fs::permissions(dir, fs::perms::all);
-  ProcessResult r = run_invfree({"simulate", "--steps", "30", "--obj", dir + "/one"},
-                                {"INVFREE_THREADS=1"});
+  ProcessResult r =
+      run_invfree({"simulate", "--steps", "30", "--obj", dir + "/one"}, {"INVFREE_THREADS=1"});
   ASSERT_EQ(r.code, 0) << r.err;
   auto limited = [&](const std::vector<std::string>& args) {
     std::vector<std::string> full;
@@ -238,10 +237,9 @@ TEST(ResourceLimits, OffscreenRenderingUnderAMemoryLimitEndsInOneLine) {
   SKIP_UNDER_ASAN();
   const std::string dir = fresh_dir("osmesa_limit");
   for (const char* limit : {"300000", "500000"}) {
-    const ProcessResult r =
-        run_invfree({"render", "--frames", "2", "--size", "64x64", "--force", "--out", dir},
-                    {"INVFREE_THREADS=1", "OPENBLAS_NUM_THREADS=1"},
-                    std::string("ulimit -v ") + limit + ";");
+    const ProcessResult r = run_invfree(
+        {"render", "--frames", "2", "--size", "64x64", "--force", "--out", dir},
+        {"INVFREE_THREADS=1", "OPENBLAS_NUM_THREADS=1"}, std::string("ulimit -v ") + limit + ";");
     EXPECT_TRUE(r.code == 0 || r.code == 3 || r.code == 4)
         << limit << ": exit " << r.code << ": " << r.err;
     if (r.code != 0) {
@@ -279,9 +277,7 @@ TEST(ResourceLimits, ExitsUnderASmallAddressSpaceLimit) {
 TEST(OutputConflicts, ACsvThatIsTheObjDirectoryIsRefusedFirst) {
   const std::string dir = fresh_dir("conflict");
   for (const auto& [obj, csv] : std::vector<std::pair<std::string, std::string>>{
-           {dir + "/d", dir + "/d"},
-           {dir + "/d/", dir + "/./d"},
-           {dir + "/e/sub", dir + "/e"}}) {
+           {dir + "/d", dir + "/d"}, {dir + "/d/", dir + "/./d"}, {dir + "/e/sub", dir + "/e"}}) {
     const ProcessResult r =
         run_invfree({"simulate", "--steps", "3000", "--obj", obj, "--csv", csv});
     EXPECT_EQ(r.code, 2) << obj << " " << csv << ": " << r.err;
@@ -290,8 +286,8 @@ TEST(OutputConflicts, ACsvThatIsTheObjDirectoryIsRefusedFirst) {
     EXPECT_FALSE(fs::exists(obj + "/0.obj")) << "refused only after a run";
   }
   // live checks its outputs before the window opens: exit 2, not 4 for want of a display.
-  const ProcessResult r = run_invfree(
-      {"live", "--frames", "1", "--record", dir + "/r", "--screenshot", dir + "/r"});
+  const ProcessResult r =
+      run_invfree({"live", "--frames", "1", "--record", dir + "/r", "--screenshot", dir + "/r"});
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("--screenshot"), std::string::npos) << r.err;
   fs::remove_all(dir);
@@ -323,8 +319,8 @@ TEST(Signals, SigtermStopsOneLongStep) {
   // A tolerance no step reaches and a cap of 100,000 iterations on 2,401 nodes: step 1
   // would run for minutes.
   Process p({exe_path(), "simulate", "--steps", "3", "--set", "mesh.n_seg=48", "--set",
-             "time.tol=1e-300", "--set", "time.max_newton=100000", "--obj", dir + "/obj",
-             "--csv", dir + "/run.csv"});
+             "time.tol=1e-300", "--set", "time.max_newton=100000", "--obj", dir + "/obj", "--csv",
+             dir + "/run.csv"});
   ASSERT_GT(p.pid(), 0);
   wait_for_files(dir + "/obj", ".obj", 1);
   // Inside step 1 for sure: a quarter of a second of CPU time after step 0 was written.
