@@ -152,8 +152,7 @@ SceneDef load_scene_argument(py::handle scene) {
   return *load.scene;
 }
 
-// --set's overrides, checked as the command line checks them: E/nu and mu/lambda not mixed,
-// each applied in order and validated, mesh.shape last.
+// --set's overrides, checked as the command line checks them: E/nu and mu/lambda not mixed.
 void apply_overrides(SceneDef& scene, const std::vector<std::pair<std::string, std::string>>& set) {
   std::string young, lame;
   for (const auto& [key, value] : set) {
@@ -166,11 +165,13 @@ void apply_overrides(SceneDef& scene, const std::vector<std::pair<std::string, s
   if (!young.empty() && !lame.empty())
     value_error("--set " + young + " and --set " + lame +
                 ": give either E and nu or mu and lambda, not both");
+  // Read one by one, the scene they make validated once (scene_io's apply_overrides, as
+  // the CLI's SceneOptions::resolve does), mesh.shape last.
+  std::vector<std::string> ordered;
   for (const bool shape_pass : {false, true})
-    for (const auto& [key, value] : set) {
-      if ((key == "mesh.shape") != shape_pass) continue;
-      if (std::string e = apply_override(scene, key + "=" + value); !e.empty()) value_error(e);
-    }
+    for (const auto& [key, value] : set)
+      if ((key == "mesh.shape") == shape_pass) ordered.push_back(key + "=" + value);
+  if (std::string e = invfree::apply_overrides(scene, ordered); !e.empty()) value_error(e);
 }
 
 std::vector<std::pair<std::string, std::string>> overrides_of(py::handle set) {

@@ -310,3 +310,19 @@ def test_threads_setting():
     b.run(10)
     invfree.set_threads(before)
     assert np.array_equal(a.x, b.x)  # the core's results do not depend on threads
+
+
+def test_overrides_are_validated_together_as_the_cli_does(cli, tmp_path):
+    # Valid only together (the CLI validates the scene the overrides make, once).
+    overrides = {"fixed.enabled": True, "fixed.corners": "top"}
+    args = ["simulate", "--scene", "course-3-contact", "--steps", "5", "--obj", str(tmp_path / "o")]
+    for key, value in overrides.items():
+        args += ["--set", f"{key}={str(value).lower() if isinstance(value, bool) else value}"]
+    code, _, err = cli(*args)
+    assert code == 0, err
+    sim = invfree.Simulation(scene="course-3-contact", set=overrides)
+    sim.run(5)
+    x = np.array([[float(a), float(b)] for a, b in
+                  (line.split()[1:3] for line in open(tmp_path / "o" / "5.obj")
+                   if line.startswith("v "))])
+    assert np.array_equal(sim.x, x)
