@@ -76,13 +76,17 @@ TEST(MovieNumbers, RealTimeFrameRateMustBeInRange) {
   expect_refused({"--mp4", "--set", "time.h=1e-12"}, why + " = 1e+06 frames/s");
   expect_refused({"--mp4", "--set", "time.h=0.5", "--steps-per-frame", "100"},
                  why + " = 0.02 frames/s");
-  // An explicit --fps makes any h fine, and without --mp4 the rate does not matter.
+  // An explicit --fps makes any h fine (one step per frame: 1e6 frames/s of simulated time,
+  // refused above without it), and without --mp4 the rate does not matter. The lecture
+  // default at h = 1e-6 picks 33,333 steps per frame (real time at 30 frames/s) and runs;
+  // two frames keep it to one frame's steps (a minute of CI's sanitize stage went to three).
   for (const std::vector<std::string>& ok :
-       {std::vector<std::string>{"--mp4", "--set", "time.h=1e-6", "--fps", "30"},
+       {std::vector<std::string>{"--mp4", "--set", "time.h=1e-6", "--steps-per-frame", "1", "--fps",
+                                 "30"},
         std::vector<std::string>{"--mp4", "--set", "time.h=1e-6"},  // 33,333 steps/frame
-        std::vector<std::string>{"--set", "time.h=1e-6"}}) {
+        std::vector<std::string>{"--set", "time.h=1e-6", "--steps-per-frame", "1"}}) {
     const std::string dir = fresh_dir("movie_ok") + "/f";
-    std::vector<std::string> args = {"render", "--frames", "3", "--size", "64x64", "--out", dir};
+    std::vector<std::string> args = {"render", "--frames", "2", "--size", "64x64", "--out", dir};
     args.insert(args.end(), ok.begin(), ok.end());
     const ProcessResult r = run_invfree(args);
     EXPECT_EQ(r.code, 0) << r.err;
