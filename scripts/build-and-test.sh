@@ -7,8 +7,9 @@
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build (preset "sanitize": -O1, assertions
 #      on, -g1: line tables for the reports' stack traces, a third less compile time than -g)
 #      of the test executables without GL (label `core`: the core, the scene reader, the
-#      command line, reliability, fuzz replay; tests/CMakeLists.txt) and those tests but
-#      the heavy ones. The GL code (render, live, charts) and its tests run in release.
+#      command line, reliability, fuzz replay; tests/CMakeLists.txt) and the Python module
+#      (its API tests under ASan, tests/python/CMakeLists.txt), and those tests but the
+#      heavy ones. The GL code (render, live, charts) and its tests run in release.
 #   4. where the web toolchain is installed (emcc, chromium and selenium, from
 #      scripts/install-web-deps.sh), the web page: scripts/install-web-deps.sh (fetches Dear
 #      ImGui's and pugixml's sources if missing), scripts/build-web.sh and its test in headless Chromium
@@ -55,7 +56,7 @@ if [[ $stages == *,sanitize,* ]]; then
   stage "AddressSanitizer + UBSan: build and test"
   cmake --preset sanitize >/dev/null
   cmake --build --preset sanitize --target invfree_tests invfree_reliability_tests invfree_shape_tests \
-    invfree_scene_fuzz_replay
+    invfree_scene_fuzz_replay invfree_python
   ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0" \
