@@ -26,6 +26,7 @@
 #include "app/live/key_bindings.h"
 #include "app/live/landscape_window.h"
 #include "app/live/live_panel.h"
+#include "app/live/panel_layout.h"
 #include "app/live/live_window.h"
 #include "app/live/mouse_gestures.h"
 #include "app/live/window_capture.h"
@@ -111,8 +112,12 @@ struct LiveAppImpl {
   // The part of the frame the world shows in and no panel covers (framebuffer px).
   render::PixelRect visible_rect() const {
     const render::FrameLayout L = renderer->layout(panel.det_f_panel);
-    const float panel_width = panel.visible ? panel.width * panel.ui_scale : 0.0f;
-    const double x0 = std::max(L.plot.x, panel_width * window.pixel_scale());
+    const double ps = window.pixel_scale();
+    const float panel_width = place_panel(float(renderer->width() / ps),
+                                          float(renderer->height() / ps), panel.ui_scale,
+                                          panel.visible)
+                                  .reserved;
+    const double x0 = std::max(L.plot.x, panel_width * ps);
     const double x1 = std::max(L.plot.x + L.plot.w, x0 + 50.0);  // overlaid: to the right edge
     return {x0, L.plot.y, x1 - x0, L.plot.h};
   }
@@ -334,6 +339,7 @@ void LiveAppImpl::build_ui(const Injection* inject) {
   if (req.screenshot) screenshot_requested = true;
   if (req.toggle_record) toggle_recording();
   if (req.fit_view) handle_action(Action::FitView);
+  if (req.toggle_panel) handle_action(Action::TogglePanel);
   if (req.quit) window.request_close();  // (Esc, Action::Quit, first releases a triangle)
   // A new scene or mesh: show it whole (even after the user chose a view).
   view.follow_scene(*controller, visible_rect());
@@ -341,6 +347,7 @@ void LiveAppImpl::build_ui(const Injection* inject) {
   const WidgetRect area{static_cast<float>(r.x / ps), static_cast<float>(r.y / ps),
                         static_cast<float>((r.x + r.w) / ps), static_cast<float>((r.y + r.h) / ps)};
   const double inspection_start = thread_cpu_ms();
+  if (panel.touch) panel.rects["picture"] = area;  // where the world shows (the page's tests)
   draw_inspection_windows(area);
   part_times.inspection_ms += thread_cpu_ms() - inspection_start;
   draw_help_overlay(panel);
@@ -440,6 +447,14 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   if (options.select_triangle >= 0) a.select(options.select_triangle);
   a.panel.ui_scale = options.ui_scale > 0.0f ? options.ui_scale : a.window.default_ui_scale();
   a.apply_ui_scale();
+  a.panel.touch = options.touch_controls;
+  if (options.touch_controls && !options.hide_panel) {
+    const double ps = a.window.pixel_scale();
+    const float det_f_w = float(a.renderer->layout(a.panel.det_f_panel).panel.w / ps);
+    a.panel.visible = panel_starts_open(float(a.renderer->width() / ps),
+                                        float(a.renderer->height() / ps), a.panel.ui_scale,
+                                        a.panel.det_f_panel == render::PanelMode::Side ? det_f_w : 0.0f);
+  }
   a.panel.max_segments = options.max_segments;
   a.view.set_size(a.renderer->width(), a.renderer->height());
   a.view.fit(*a.controller, a.visible_rect());

@@ -52,6 +52,9 @@ struct LiveOptions {
   bool bench = false;                // print frames/s at the end
   bool paused = false;               // start paused
   bool hide_panel = false;           // start with the panel hidden (Tab shows it)
+  // Touch controls (the web page): a button opens and closes the panel, which starts closed
+  // where it would leave the picture a strip (app/live/panel_layout.h).
+  bool touch_controls = false;
   // 0: from the window (its content scale times its size over 1280x720, at least 1).
   float ui_scale = 0.0f;
   render::PanelMode det_f_panel = render::PanelMode::Side;

@@ -13,6 +13,8 @@
 #include "app/live/course.h"
 #include "app/live/key_bindings.h"
 #include "app/live/log_slider.h"
+#include "app/live/panel_layout.h"
+#include "app/live/step_time.h"
 #include "app/live/param_limits.h"
 #include "app/live/plot_range.h"
 #include "app/live/scene_ideas.h"
@@ -172,6 +174,43 @@ bool clamped_slider(LiveController& lc, PanelState& ps, const char* label, const
 
 void apply(LiveController& lc, const SceneDef& next) {
   lc.apply(next);  // refusals leave their reason in lc.note
+}
+
+// The n_seg row's style by touch (panel_layout.h's kTouchTarget high, a wide handle), for
+// the scope of one row; nothing without touch controls.
+struct NsegTouchStyle {
+  bool on;
+  explicit NsegTouchStyle(const PanelState& ps) : on(ps.touch) {
+    if (!on) return;
+    const float pad = std::max(0.0f, 0.5f * (kTouchTarget * ps.ui_scale - ImGui::GetFontSize()));
+    ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, pad));
+    ImGui::PushStyleVar(ImGuiStyleVar_GrabMinSize, 0.6f * kTouchTarget * ps.ui_scale);
+  }
+  ~NsegTouchStyle() {
+    if (on) ImGui::PopStyleVar(2);
+  }
+  NsegTouchStyle(const NsegTouchStyle&) = delete;
+  NsegTouchStyle& operator=(const NsegTouchStyle&) = delete;
+};
+
+// One mesh step down or up by a tap: a finger cannot hit one of 37 values on a 200-px slider.
+void n_seg_buttons(LiveController& lc, PanelState& ps, bool enabled, int slider_max) {
+  const float side = kTouchTarget * ps.ui_scale;
+  SceneDef next = lc.settings();
+  int step = 0;
+  ImGui::BeginDisabled(!enabled);
+  ImGui::SameLine();
+  if (ImGui::Button("-##n_seg", ImVec2(side, side))) step = -1;
+  remember(ps, "n_seg_minus");
+  ImGui::SameLine();
+  if (ImGui::Button("+##n_seg", ImVec2(side, side))) step = 1;
+  remember(ps, "n_seg_plus");
+  ImGui::EndDisabled();
+  const int n = std::clamp(next.n_seg + step, kMinSegments, slider_max);
+  if (step != 0 && n != next.n_seg) {
+    next.n_seg = n;
+    apply(lc, next);
+  }
 }
 
 void playback_section(LiveController& lc, PanelState& ps, PanelRequests& req) {
@@ -341,9 +380,13 @@ void solver_section(LiveController& lc, PanelState& ps) {
   int n = ps.n_seg_edit > 0 ? ps.n_seg_edit : next.n_seg;
   const int slider_max = std::max(ps.max_segments, kMinSegments + 1);
   ImGui::BeginDisabled(!meshing.any);
+  // By touch: a finger-high row, the label inside (the -/+ buttons take its place).
+  const NsegTouchStyle touch(ps);
+  const char* n_seg_label = ps.touch ? "##n_seg (mesh)" : "n_seg (mesh)";
   slider_with_readable_value(
-      "n_seg (mesh)", float(n - kMinSegments) / float(slider_max - kMinSegments), std::to_string(n),
-      [&] { return ImGui::SliderInt("n_seg (mesh)", &n, kMinSegments, slider_max, "%d"); });
+      n_seg_label, float(n - kMinSegments) / float(slider_max - kMinSegments),
+      ps.touch ? "n_seg = " + std::to_string(n) : std::to_string(n),
+      [&] { return ImGui::SliderInt(n_seg_label, &n, kMinSegments, slider_max, "%d"); });
   ImGui::EndDisabled();
   remember(ps, "n_seg");
   if (ImGui::IsItemActive()) ps.n_seg_edit = n;
@@ -370,6 +413,7 @@ void solver_section(LiveController& lc, PanelState& ps) {
     ImGui::SetTooltip("rebuilds the mesh and restarts when released (max %d: still >= 30 frames/s)",
                       slider_max);
   }
+  if (ps.touch) n_seg_buttons(lc, ps, meshing.any, slider_max);
 }
 
 void contact_section(LiveController& lc, PanelState& ps) {
@@ -501,8 +545,10 @@ void stats_section(const LiveController& lc, PanelState& ps) {
               sim.mesh.node_count());
   if (lc.has_stepped()) {
     const StepReport& r = lc.last_report();
-    ImGui::Text("%.2f ms/step    Newton %d it    residual %.2e m/s", r.wall_ms, r.newton_iterations,
-                r.residual);
+    // (the wall-clock figure last: its changing digits move nothing else on the line)
+    const double ms = shown_step_ms(lc.ms_history().values(), r.wall_ms);
+    ImGui::Text("Newton %d it    residual %.2e m/s    %s", r.newton_iterations, r.residual,
+                step_time_text(ms).c_str());
   } else {
     ImGui::TextColored(kDimColor, "no step yet");
   }
@@ -535,9 +581,10 @@ void stats_section(const LiveController& lc, PanelState& ps) {
       char title[96] = "ms per step";
       if (!ms.empty()) {
         const float mean = std::accumulate(ms.begin(), ms.end(), 0.0f) / ms.size();
-        std::snprintf(title, sizeof title, "ms/step: last %.2f, mean %.2f", ms.back(), mean);
+        std::snprintf(title, sizeof title, "last %s, mean %s", step_time_text(ms.back()).c_str(),
+                      step_time_text(mean).c_str());
       }
-      labelled_plot(ps, "ms_plot", title, ms, 1.0f, "%.2f");
+      labelled_plot(ps, "ms_plot", title, ms, 1.0f, "%.3g ms");
       ImGui::EndTabItem();
     }
     ImGui::EndTabBar();
@@ -614,22 +661,53 @@ void view_section(PanelState& ps) {
   color_by_row(ps);
 }
 
+// The closed panel's button, a finger high, at the window's top left. True when tapped.
+bool panel_open_button(PanelState& ps, ImVec2 at) {
+  ImGui::SetNextWindowPos(at, ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("##open_panel", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings);
+  const bool tapped = ImGui::Button("Controls", ImVec2(0, kTouchTarget * ps.ui_scale));
+  remember(ps, "panel_toggle");
+  ImGui::End();
+  return tapped;
+}
+
 }  // namespace
 
 PanelRequests draw_panel(LiveController& lc, PanelState& ps) {
   PanelRequests req;
   ps.previous_rects.swap(ps.rects);
   ps.rects.clear();
-  if (!ps.visible) return req;
   const ImGuiViewport* vp = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(vp->WorkPos, ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(ps.width * ps.ui_scale, vp->WorkSize.y), ImGuiCond_Always);
+  const PanelPlacement place = place_panel(vp->WorkSize.x, vp->WorkSize.y, ps.ui_scale, ps.visible);
+  const bool button = ps.touch || place.drawer;  // a visible open/close button
+  if (!ps.visible) {
+    if (button) req.toggle_panel = panel_open_button(ps, vp->WorkPos);
+    return req;
+  }
+  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + place.x, vp->WorkPos.y + place.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(place.w, place.h), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(1.0f);  // opaque: the picture's plane lines must not show through
+  // A scroll bar a finger can drag where the panel is longer than the screen.
+  if (ps.touch) ImGui::PushStyleVar(ImGuiStyleVar_ScrollbarSize, 0.5f * kTouchTarget * ps.ui_scale);
   ImGui::Begin("invfree live", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);
-  ImGui::PushItemWidth(ps.width * ps.ui_scale * 0.55f);
-  ImGui::TextColored(kDimColor, "F1: keys and mouse    Tab: hide this panel");
+  if (ps.touch) ImGui::PopStyleVar();
+  ps.rects["panel"] = {place.x, place.y, place.x + place.w, place.y + place.h};
+  ImGui::PushItemWidth(place.w * 0.55f);
+  if (button) {
+    if (ImGui::Button("Hide controls", ImVec2(0, kTouchTarget * ps.ui_scale)))
+      req.toggle_panel = true;
+    remember(ps, "panel_toggle");
+    ImGui::SameLine();
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextColored(kDimColor, "F1: keys    Tab: hide");
+  } else {
+    ImGui::TextColored(kDimColor, "F1: keys and mouse    Tab: hide this panel");
+  }
   playback_section(lc, ps, req);
   ImGui::Separator();
   scene_section(lc, ps);
@@ -648,10 +726,21 @@ PanelRequests draw_panel(LiveController& lc, PanelState& ps) {
   return req;
 }
 
+// Where the banners begin: 16 px into the picture, and below the panel's controls where they
+// lie over it (the page's closed panel's button; an open drawer's rows), never over them.
+float banners_top(const PanelState& ps, const WidgetRect& area) {
+  float y = area.y0 + 16.0f;
+  for (const auto& [name, r] : ps.rects)
+    if (name != "panel" && name != "picture" && name != "note" && name != "inspector" &&
+        r.x1 > area.x0 && r.x0 < area.x1)
+      y = std::max(y, r.y1 + 8.0f);
+  return y;
+}
+
 void draw_banners(const LiveController& lc, PanelState& ps, const WidgetRect& area) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const float cx = 0.5f * (area.x0 + area.x1);
-  float y = area.y0 + 16.0f;
+  float y = banners_top(ps, area);
   ImFont* big = ps.big_font ? ps.big_font : ImGui::GetFont();
   const float big_size = big->FontSize;
   if (!lc.playing()) {

@@ -28,6 +28,9 @@ namespace invfree::live {
 struct PanelState {
   bool visible = true;
   bool show_help = false;
+  // Touch controls (the web page): a button that opens and closes the panel, a taller n_seg
+  // row with -/+ buttons (panel_layout.h).
+  bool touch = false;
   float width = 390.0f;  // pixels, at UI scale 1
   // The view choices the panel edits and the window applies: the UI scale (panel and
   // det F panel together), where the det F panel goes, the det F colour scale.
@@ -60,6 +63,7 @@ struct PanelRequests {
   bool toggle_record = false;
   bool fit_view = false;
   bool quit = false;
+  bool toggle_panel = false;  // the panel's open/close button (as Tab)
 };
 
 PanelRequests draw_panel(LiveController& lc, PanelState& ps);

@@ -15,8 +15,10 @@ FrameLayout frame_layout(int width, int height, PanelMode panel, double text_sca
   // while it still fits the frame's height (a larger UI scale then enlarges the ImGui
   // panel alone), so its bar and labels never crowd.
   l.scale = std::min(std::min(width / 1280.0, height / 720.0) * text_scale, height / 720.0);
-  const double panel_w =
-      panel != PanelMode::Hidden ? std::round(std::min(290.0 * l.scale, 0.45 * width)) : 0.0;
+  // Nor wider than 45% of the frame: on a narrow one (a phone's page) the panel and its text
+  // shrink together, so that no line is cut at the frame's edge.
+  l.scale = std::min(l.scale, 0.45 * width / 290.0);
+  const double panel_w = panel != PanelMode::Hidden ? std::round(290.0 * l.scale) : 0.0;
   l.overlay = panel == PanelMode::Overlay;
   l.plot = {0.0, 0.0, l.overlay ? double(width) : width - panel_w, double(height)};
   l.panel = {width - panel_w, 0.0, panel_w, double(height)};

@@ -30,6 +30,7 @@
 
 #include "app/live/course.h"
 #include "app/live/live_app.h"
+#include "app/live/step_time.h"
 #include "linalg/parallel.h"
 #include "scene/scene.h"
 #include "scene_io/builtin_scenes.h"
@@ -132,6 +133,7 @@ std::unique_ptr<LiveApp> open_app() {
     if (o.scenes[i].label == scene) o.selected = static_cast<int>(i);
   o.paused = query_int("paused", 0) != 0;
   o.max_segments = kWebMaxSegments;
+  o.touch_controls = true;  // a phone has no Tab key: the panel opens and closes by a button
   if (software_webgl()) o.samples = 1;
   o.width = std::max(320, window_width());
   o.height = std::max(240, window_height());
@@ -214,13 +216,18 @@ void publish_state(Page& p) {
   char head[512];
   std::snprintf(head, sizeof head,
                 "{\"frames\":%ld,\"steps\":%ld,\"min_det_f\":%.17g,\"mu\":%.17g,\"lambda\":%.17g,"
-                "\"n_seg\":%d,\"playing\":%s,\"fps\":%.2f,\"step_ms\":%.3f,\"scene\":\"%s\","
-                "\"color_by\":\"%s\",\"triangles\":%d,",
+                "\"n_seg\":%d,\"playing\":%s,\"fps\":%.2f,\"step_ms\":%.6g,\"scene\":\"%s\","
+                "\"color_by\":\"%s\",\"triangles\":%d,\"step_time\":\"%s\",",
                 p.app->frames_drawn(), steps, lc.stats().min_det_f, s.lame.mu, s.lame.lambda,
                 s.n_seg, lc.playing() ? "true" : "false", p.fps,
                 steps ? lc.step_ms_total() / steps : 0.0, s.name.c_str(),
                 invfree::enum_name(invfree::kTriangleFieldNames, p.app->color_by()),
-                lc.simulation().mesh.triangle_count());
+                lc.simulation().mesh.triangle_count(),
+                lc.has_stepped() ? invfree::live::step_time_text(
+                                       invfree::live::shown_step_ms(lc.ms_history().values(),
+                                                                    lc.last_report().wall_ms))
+                                       .c_str()
+                                 : "");
   const std::string json = head + std::string("\"selected\":") + selected_json(*p.app) +
                            ",\"widgets\":{" + widgets + "}}";
   // note and banner are free text: handed over as strings, not spliced into the JSON.
