@@ -64,7 +64,7 @@ def select_middle_triangle(driver, state):
         "const out = []; for (let t = 0; t < arguments[0]; ++t)"
         "  out.push([Module._invfree_triangle_window_x(t), Module._invfree_triangle_window_y(t)]);"
         "return out;", state["triangles"])
-    panel_right = max(r[2] for name, r in state["widgets"].items() if name not in ("note", "inspector"))
+    panel_right = max(r[2] for name, r in state["widgets"].items() if name not in ("note", "inspector", "picture"))
     visible = [t for t, (x, y) in enumerate(centroids) if x is not None and x > panel_right + 12]
     if not visible:
         raise SystemExit(f"no triangle right of the panel (x {panel_right}) to select: {centroids[:4]}... "

@@ -2,8 +2,10 @@
 """A screenshot of the web page (docs/web.md) in headless Chromium, for the docs.
 
 Usage: tests/web/page_screenshot.py OUT.png [--size 1366x768] [--steps 150] [--query ...]
+                                   [--panel open|closed]
 Opens the built page (build/web) playing, waits until `--steps` steps are done, then pauses
-it (Space) and writes the viewport as a PNG.
+it (Space), opens or closes the panel if asked (a click on its Controls / Hide controls
+button) and writes the viewport as a PNG.
 """
 
 import argparse
@@ -21,6 +23,7 @@ def main():
     parser.add_argument("--size", default="1366x768")
     parser.add_argument("--steps", type=int, default=150)
     parser.add_argument("--query", default="", help="extra URL query, e.g. n_seg=16")
+    parser.add_argument("--panel", choices=("open", "closed"), help="as the page opens it if left out")
     args = parser.parse_args()
     missing = pd.missing_toolchain(args.page_dir)
     if missing:
@@ -39,6 +42,19 @@ def main():
         actions = ActionChains(driver)
         actions.key_down(Keys.SPACE).pause(0.3).key_up(Keys.SPACE).perform()
         pd.wait_for(driver, lambda s: not s["playing"], "the page to pause")
+        state = pd.page_state(driver)
+        if args.panel and ("panel" in state["widgets"]) != (args.panel == "open"):
+            x0, y0, x1, y1 = state["widgets"]["panel_toggle"]
+            pointer = ActionChains(driver)
+            pointer.w3c_actions.pointer_action.move_to_location(int((x0 + x1) / 2), int((y0 + y1) / 2))
+            pointer.w3c_actions.pointer_action.click()
+            pointer.perform()
+            pd.wait_for(driver, lambda s: ("panel" in s["widgets"]) == (args.panel == "open"),
+                        f"the panel to be {args.panel}")
+            # away from the button, so that no hover colour is in the picture
+            pointer = ActionChains(driver)
+            pointer.w3c_actions.pointer_action.move_to_location(width - 1, height - 1)
+            pointer.perform()
         frames = pd.page_state(driver)["frames"]
         pd.wait_for(driver, lambda s: s["frames"] >= frames + 3, "a few paused frames")
         driver.save_screenshot(args.out)
