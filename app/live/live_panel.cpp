@@ -743,7 +743,11 @@ void draw_banners(const LiveController& lc, PanelState& ps, const WidgetRect& ar
   float y = banners_top(ps, area);
   ImFont* big = ps.big_font ? ps.big_font : ImGui::GetFont();
   const float big_size = big->FontSize;
-  if (!lc.playing()) {
+  // An open drawer over the picture (a phone): its Play button says it; PAUSED below its
+  // rows would push a note off the screen.
+  const auto drawer = ps.rects.find("panel");
+  const bool over_picture = drawer != ps.rects.end() && drawer->second.x1 > area.x0;
+  if (!lc.playing() && !over_picture) {
     const char* text = "PAUSED";
     const ImVec2 sz = big->CalcTextSizeA(big_size, FLT_MAX, 0.0f, text);
     const ImVec2 a(cx - 0.5f * sz.x - 18.0f, y), b(cx + 0.5f * sz.x + 18.0f, y + sz.y + 10.0f);
