@@ -5,7 +5,9 @@
 // family's static cantilever against beam theory (app/verify/exact_study.h), a panel of
 // study.png and DIR/study-exact.csv; and the course's chapter 9: the reduced bases' error to
 // the full model against ms per step (app/study/reduced_study.h), a panel of study.png and
-// DIR/study-reduced.csv. Progress goes to stderr, a summary to stdout.
+// DIR/study-reduced.csv. --slides adds the 16:9 slides (app/study/study_slides.h),
+// --methods runs a subset. Progress goes to stderr, a summary to stdout, and a warning on
+// stdout when a model's errors do not fall with h.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -21,6 +23,8 @@
 #include "app/study/reduced_study.h"
 #include "app/study/study.h"
 #include "app/study/study_chart.h"
+#include "app/study/study_slides.h"
+#include "app/study/methods.h"
 #include "app/sweep_command.h"
 #include "app/verify/exact_study.h"
 
@@ -31,12 +35,17 @@ namespace {
 struct StudyCommandOptions {
   SceneOptions scene;
   SweepCommandOptions sweep;
+  std::string methods;  // --methods a,b,c
+  bool slides = false;
 };
 
 int run_study_command(const StudyCommandOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
+  std::vector<std::string> methods;
+  if (std::string e = parse_method_list(opt.methods, study_methods(), &methods); !e.empty())
+    return fail(exit_code::kBadInput, e);
   const std::string csv_path = opt.sweep.out + "/study.csv",
                     exact_path = opt.sweep.out + "/study-exact.csv",
                     reduced_path = opt.sweep.out + "/study-reduced.csv",
@@ -46,8 +55,14 @@ int run_study_command(const StudyCommandOptions& opt) {
   if (auto e = check_output_files({csv_path, exact_path, reduced_path, png_path, sweeps_path},
                                   opt.scene.input_files(), opt.sweep.force))
     return fail(e.exit_code, e.message);
+  if (opt.slides)
+    for (const char* n : {"study-slide-speed", "study-slide-convergence"})
+      if (auto e = check_output_files({opt.sweep.out + "/" + n + "." + ext},
+                                      opt.scene.input_files(), opt.sweep.force))
+        return fail(e.exit_code, e.message);
 
-  const SweepOptions sweep = sweep_options(opt.sweep, "study");
+  SweepOptions sweep = sweep_options(opt.sweep, "study");
+  sweep.methods = methods;
   const StudyResult result = run_study(*scene, sweep);
   if (result.stopped) return fail(interrupted_exit_code(), "study interrupted; nothing written");
   const ExactStudy exact = run_exact_study(sweep);
@@ -63,6 +78,13 @@ int run_study_command(const StudyCommandOptions& opt) {
   if (error.empty()) error = write_canvas(png_path, *chart_canvas(panels, opt.sweep.format));
   if (error.empty())
     error = write_canvas(sweeps_path, *chart_canvas(sweeps_panels(result), opt.sweep.format));
+  std::string slides_written;
+  if (opt.slides)
+    for (const Slide& slide : study_slides(result)) {
+      const std::string path = opt.sweep.out + "/" + slide.name + "." + ext;
+      if (error.empty()) error = write_canvas(path, *chart_canvas({slide.chart}, opt.sweep.format));
+      slides_written += ", " + path;
+    }
   if (!error.empty()) return fail(exit_code::kOutputFailed, error);
 
   int failed = 0;
@@ -73,10 +95,19 @@ int run_study_command(const StudyCommandOptions& opt) {
   std::printf(
       "study of %s: %zu runs (%d failed), implicit Euler error slope %s, %.1f s in the solver; "
       "%zu static solves against the exact answer; %zu runs of reduced bases; wrote %s, %s, "
-      "%s, %s, %s\n",
+      "%s, %s, %s%s\n",
       scene->name.c_str(), result.rows.size(), failed, slope.c_str(), result.total_wall_s,
       exact.rows.size(), reduced.rows.size(), csv_path.c_str(), exact_path.c_str(),
-      reduced_path.c_str(), png_path.c_str(), sweeps_path.c_str());
+      reduced_path.c_str(), png_path.c_str(), sweeps_path.c_str(), slides_written.c_str());
+  // Errors that do not fall with h rank nothing: said where the summary is read.
+  for (const ModelConvergence* c : non_converging_models(result))
+    std::printf(
+        "warning: the %s errors do not converge with h (%s ... %s of the side, fitted slope "
+        "%s): they measure drift from the reference, not accuracy; study.%s draws no Pareto "
+        "front for %s\n",
+        c->model.c_str(), format_number(c->error_lo, "%.2g").c_str(),
+        format_number(c->error_hi, "%.2g").c_str(), format_number(c->slope, "%.2f").c_str(),
+        ext.c_str(), c->model.c_str());
   for (const std::string& f : result.reference_failures)
     std::fprintf(stderr, "invfree: warning: %s\n", f.c_str());
   flush_standard_output();
@@ -111,8 +142,14 @@ void register_study_command(CLI::App& app, int& exit_code) {
   add_sweep_options(cmd, opt.sweep,
                     "directory for study.csv, study-exact.csv, study-reduced.csv, study.png and "
                     "study-sweeps.png (or .svg, .pdf)",
-                    "fewer h, tolerances and meshes, a coarser reference, and fewer reduced bases "
-                    "(docs/study.md)");
+                    "fewer h, tolerances and meshes, a coarser reference, and fewer reduced bases, "
+                    "over the full study's simulated time (docs/study.md)");
+  cmd->add_option("--methods", opt.methods,
+                  "run only these methods, comma-separated (e.g. lecture,no-projection,"
+                  "symplectic-euler; docs/study.md lists them)");
+  cmd->add_flag("--slides", opt.slides,
+                "also write study-slide-speed and study-slide-convergence: one 16:9 chart each, "
+                "large type, the takeaway as the title");
 }
 
 }  // namespace invfree

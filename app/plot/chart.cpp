@@ -68,7 +68,8 @@ ChartLayout chart_layout(const ChartSpec& spec) {
   ChartLayout c;
   c.width = std::max(spec.width, 160);
   c.height = std::max(spec.height, 120);
-  const double u = c.u = std::clamp(std::min(c.width / 1280.0, c.height / 800.0), 0.4, 4.0);
+  const double u = c.u = std::clamp(std::min(c.width / 1280.0, c.height / 800.0), 0.4, 4.0) *
+                         std::clamp(spec.type_scale, 0.25, 4.0);
   c.title_size = 26 * u, c.label_size = 19 * u, c.tick_size = 16 * u, c.legend_size = 16 * u;
   c.note_size = 15 * u;
   std::vector<double> xs, ys;

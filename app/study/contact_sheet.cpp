@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/colormap.h"
+#include "app/format_number.h"
 #include "app/plot/canvas.h"
 
 namespace invfree {
@@ -17,8 +18,37 @@ constexpr Rgb kMuted{0.45f, 0.45f, 0.48f};
 constexpr Rgb kFail{0.78f, 0.08f, 0.10f};
 constexpr Rgb kPlane{0.30f, 0.30f, 0.32f};
 constexpr Rgb kPlaneFill{0.93f, 0.93f, 0.94f};
+// An inversion the model allows: neutral slate blue, neither ok's ink nor a failure's red.
+constexpr Rgb kAllowed{0.25f, 0.36f, 0.62f};
+// Mesh edges are drawn only where a triangle's edge is at least this long on screen.
+constexpr double kMinEdgePx = 6.0;
 
 }  // namespace
+
+Rgb cell_class_color(CellClass c) {
+  switch (c) {
+    case CellClass::Ok:
+      return kInk;
+    case CellClass::Failed:
+      return kFail;
+    case CellClass::InversionAllowed:
+      return kAllowed;
+    case CellClass::NotApplicable:
+      return kMuted;
+  }
+  return kInk;
+}
+
+std::string cell_caption(const StabilityCell& c) {
+  switch (cell_class(c.verdict)) {
+    case CellClass::InversionAllowed:
+      return "inverted, allowed";
+    default:
+      return verdict_name(c.verdict);
+  }
+}
+
+namespace {}  // namespace
 
 void draw_frame(Canvas& cell, const Frame& f, double x0, double y0, double size) {
   // The cell is clipped, so anything far outside (a blown-up run) stays in it.
@@ -69,8 +99,16 @@ void draw_frame(Canvas& cell, const Frame& f, double x0, double y0, double size)
         colors.push_back(det_f_color(f.det_f[t]));
       }
   cell.triangles(nodes, tris, colors);
+  // Edges only where a cell of the mesh is large on screen: at the 64x64 fold's few pixels
+  // per triangle, edges 0.6 px wide covered the colour and the body rendered black.
+  double edge_px = 0.0;
   for (const auto& t : tris)
-    cell.polyline({nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[0]]}, 0.6, kInk, 0.45);
+    edge_px += std::hypot(nodes[t[1]].x - nodes[t[0]].x, nodes[t[1]].y - nodes[t[0]].y);
+  edge_px /= std::max<size_t>(tris.size(), 1);
+  if (edge_px >= kMinEdgePx)
+    for (const auto& t : tris)
+      cell.polyline({nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[0]]}, 0.6, kInk,
+                    std::min(0.45, 0.45 * edge_px / (2.0 * kMinEdgePx)));
   // A triangle that has just gone through det F = 0 is a sliver too thin to see: mark it.
   for (size_t t = 0; t < f.det_f.size(); ++t)
     if (!(f.det_f[t] > 0.0)) {
@@ -86,6 +124,10 @@ void draw_frame(Canvas& cell, const Frame& f, double x0, double y0, double size)
 
 namespace {
 
+std::string min_det_f_text(const StabilityCell& c) {
+  return "min det F " + format_number(c.min_det_f, "%.2g");
+}
+
 // One run's cell at (x, y): its frame (or "n/a" and why), the verdict and when it ended.
 void draw_cell(Canvas& img, const StabilityCell& c, int x, int y, int cell) {
   if (c.verdict == Verdict::NotApplicable) {
@@ -99,20 +141,32 @@ void draw_cell(Canvas& img, const StabilityCell& c, int x, int y, int cell) {
   } else {
     draw_frame(img, c.frame, x, y, cell);
   }
-  const bool ok = c.verdict == Verdict::Ok;
-  const std::string verdict = verdict_name(c.verdict);
-  img.text(verdict, x + cell / 2.0, y + cell + 17, 16,
-           ok ? kInk : (c.verdict == Verdict::NotApplicable ? kMuted : kFail), Align::Center);
-  char sub[64];
-  if (c.verdict == Verdict::NotApplicable)
-    sub[0] = 0;
-  else if (ok)
-    std::snprintf(sub, sizeof sub, "t = %.2f s", c.frame.time);
-  else
-    std::snprintf(sub, sizeof sub, "%s", failure_time(c).c_str());
+  const CellClass cls = cell_class(c.verdict);
+  // A failure is framed in red, an allowed inversion in the neutral colour.
+  if (cls == CellClass::Failed || cls == CellClass::InversionAllowed)
+    img.stroke_rect(x + 1.5, y + 1.5, x + cell - 1.5, y + cell - 1.5, 3.0, cell_class_color(cls));
+  img.text(cell_caption(c), x + cell / 2.0, y + cell + 17, 16, cell_class_color(cls),
+           Align::Center);
+  // An ok run says how close it came to inverting (the smallest det F over the run, with
+  // its colour), so two ok cells read differently.
+  std::string sub;
+  if (cls == CellClass::Ok) {
+    if (std::isfinite(c.min_det_f)) {
+      const double sw = 11.0;
+      const double tx = x + cell / 2.0 - (text_width(min_det_f_text(c), 12) + sw + 4) / 2.0;
+      img.fill_rect(tx, y + cell + 24, tx + sw, y + cell + 24 + sw, det_f_color(c.min_det_f));
+      img.stroke_rect(tx, y + cell + 24, tx + sw, y + cell + 24 + sw, 0.8, kInk);
+      img.text(min_det_f_text(c), tx + sw + 4, y + cell + 33, 12, kMuted);
+    }
+    sub = "t = " + format_number(c.frame.time, "%.2f") + " s";
+  } else if (cls != CellClass::NotApplicable) {
+    sub = failure_time(c);
+  }
+  const double sub_top = cls == CellClass::Ok && std::isfinite(c.min_det_f) ? 14.0 : 0.0;
   const auto sub_lines = wrap_text(sub, 12, cell - 4);
   for (size_t i = 0; i < sub_lines.size(); ++i)
-    img.text(sub_lines[i], x + cell / 2.0, y + cell + 33 + 14.0 * i, 12, kMuted, Align::Center);
+    img.text(sub_lines[i], x + cell / 2.0, y + cell + 33 + sub_top + 14.0 * i, 12, kMuted,
+             Align::Center);
 }
 
 // The det F colour bar with its ticks at (bx, by), and the det F <= 0 swatch beside it.
@@ -139,6 +193,9 @@ void draw_color_bar(Canvas& img, int bx, int by) {
   img.fill_rect(bx + bw + 40, by, bx + bw + 80, by + bh, kInvertedColor);
   img.stroke_rect(bx + bw + 40, by, bx + bw + 80, by + bh, 1.0, kInk);
   img.text("det F \u2264 0 (inverted; ringed)", bx + bw + 90, by + 14, 15, kInk);
+  img.text("red frame: failed;", bx + bw + 40, by + 44, 15, kFail);
+  img.text("blue frame: inverted, allowed by the model (linear, ARAP, stable neo-Hookean)",
+           bx + bw + 40 + text_width("red frame: failed; ", 15), by + 44, 15, kAllowed);
   img.text("compressed", bx, by - 6, 13, kMuted);
   img.text("stretched", bx + bw, by - 6, 13, kMuted, Align::Right);
 }

@@ -1,5 +1,7 @@
 #include "app/study/methods.h"
 
+#include <algorithm>
+
 #include "scene_io/scene_file.h"
 
 namespace invfree {
@@ -105,6 +107,11 @@ std::string method_model(const Method& method) {
   return "";
 }
 
+bool inversion_allowed(const Method& method) {
+  const std::string model = method_model(method);
+  return model == "linear" || model == "arap" || model == "stable-neo-hookean";
+}
+
 std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps) {
   if (method.self_contact_only && !scene.self_contact_on())
     return "the scene has no self-contact, so nothing to take the CCD from";
@@ -113,6 +120,28 @@ std::string apply_method(const Method& method, SceneDef& scene, bool with_subste
                                            std::end(method.overrides));
   if (std::string e = apply_overrides(scene, overrides); !e.empty()) return e;
   if (with_substeps) scene.h /= method.substeps;
+  return "";
+}
+
+std::string parse_method_list(const std::string& text, std::span<const Method> allowed,
+                              std::vector<std::string>* out) {
+  out->clear();
+  std::vector<std::string> names;
+  size_t begin = 0;
+  while (begin <= text.size() && !text.empty()) {
+    const size_t end = std::min(text.find(',', begin), text.size());
+    names.push_back(text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  std::string choices;
+  for (const Method& m : allowed) choices += std::string(choices.empty() ? "" : ", ") + m.name;
+  for (const std::string& n : names) {
+    const bool known =
+        std::any_of(allowed.begin(), allowed.end(), [&](const Method& m) { return n == m.name; });
+    if (!known) return "--methods: unknown method '" + n + "' (one of: " + choices + ")";
+  }
+  for (const Method& m : allowed)
+    if (std::find(names.begin(), names.end(), m.name) != names.end()) out->push_back(m.name);
   return "";
 }
 

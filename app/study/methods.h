@@ -48,9 +48,20 @@ const Method* find_method(const std::string& name);
 // model share one reference in the study, so only their errors compare with each other.
 std::string method_model(const Method& method);
 
+// The method's model may invert by design (linear, ARAP, stable neo-Hookean: energies
+// finite at det F <= 0), so the stability sweep marks an inversion as allowed, not as a
+// failure. Not the springs: a triangle folding through under them is the course's lesson.
+bool inversion_allowed(const Method& method);
+
 // The scene with the method's settings applied (time.h is divided by `substeps` when
 // `with_substeps`). Returns "" or the parser's error.
 std::string apply_method(const Method& method, SceneDef& scene, bool with_substeps);
+
+// `--methods a,b,c`: the names, each one of `allowed`, in `allowed`'s order, into `out`
+// ("" leaves `out` empty: every method). Returns "" or a one-line error naming the
+// unknown name and the choices.
+std::string parse_method_list(const std::string& text, std::span<const Method> allowed,
+                              std::vector<std::string>* out);
 
 // The method's settings as a command line fragment, e.g. "--set solver.projection=full".
 std::string method_command_line(const Method& method);

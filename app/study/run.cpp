@@ -59,6 +59,7 @@ RunResult run_scene(const SceneDef& scene, const RunOptions& options) {
   RunMonitor monitor;
   monitor.factor = options.blow_up_factor;
   monitor.inversion_is_failure = options.inversion_is_failure;
+  monitor.inversion_allowed = options.inversion_allowed;
   monitor.start(sim, options.duration);
   const long total = step_count(options.duration, scene.h);
   size_t next_sample = 0;
@@ -93,6 +94,18 @@ RunResult run_scene(const SceneDef& scene, const RunOptions& options) {
       result.fail_step = sim.step_count;
     }
   }
+  if (result.verdict == Verdict::Ok && monitor.inversion_is_failure && monitor.inversion_allowed) {
+    if (monitor.inverted_step >= 0) {
+      result.verdict = Verdict::InvertedAllowed;
+      result.fail_step = monitor.inverted_step;
+      result.message = monitor.inverted_why;
+    } else if (!monitor.recovered) {
+      result.verdict = Verdict::InvertedAllowed;
+      result.fail_step = sim.step_count;
+      result.message = "started inverted and never recovered, which the model allows";
+    }
+  }
+  if (monitor.inversion_is_failure) result.min_det_f = monitor.min_det_f;
   if (options.keep_frame) result.frame = capture(sim);
   return result;
 }

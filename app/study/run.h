@@ -31,6 +31,9 @@ struct RunOptions {
   // The stability table counts det F <= 0 as a failure for every model; the study measures
   // accuracy and lets the invertible models invert (neo-Hookean never can: the core stops it).
   bool inversion_is_failure = true;
+  // With inversion_is_failure: det F <= 0 ends nothing, and a run that otherwise ends ok is
+  // inverted-allowed (the models that may invert by design: methods.h's inversion_allowed).
+  bool inversion_allowed = false;
 };
 
 struct RunResult {
@@ -40,6 +43,7 @@ struct RunResult {
   double wall_s = 0.0;  // wall-clock seconds inside step() (the checks here are not counted)
   long steps = 0;       // accepted steps
   long newton_iterations = 0;
+  double min_det_f = NAN;     // the smallest det F over the run, where inversions are looked at
   std::vector<VecX> samples;  // positions at the sample times reached
   Frame frame;
 };

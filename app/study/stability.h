@@ -24,8 +24,13 @@ struct StabilityCell {
   long steps = 0;
   double duration = 0.0;
   std::string message;
+  double min_det_f = NAN;  // the smallest det F over the run (up to where it ended)
   Frame frame;
 };
+
+// How a cell reads: ok, a failure, an inversion its model allows (neutral, not red), n/a.
+enum class CellClass { Ok, Failed, InversionAllowed, NotApplicable };
+CellClass cell_class(Verdict v);
 
 // The course's chapter 0 (issue 29): its explicit integrator (symplectic Euler, the scene's
 // own) on the hanging mass-spring square, at the demo's h and at a larger one. An explicit
@@ -60,6 +65,7 @@ struct StabilityResult {
 
 // quick: each scene until its defining event only (quick_stability_duration), not the
 // time to settle after it.
+// options.methods picks the rows (empty: every method of stability_methods()).
 StabilityResult run_stability(const SweepOptions& options);
 
 // When a failed run failed, for people: "t = 0.62 s, step 62", or for a method taking

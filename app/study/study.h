@@ -30,8 +30,26 @@ struct StudyRow {
   std::string message;
 };
 
+// Whether a material model's errors fall with h: the fitted slope of log(error) against
+// log(h) over every ok point of the model's methods in the h sweep. Below
+// kMinConvergenceSlope, or with no error below kMaxConvergedError of the side, the errors
+// measure how far runs drift from the reference (contact events out of phase, bodies on
+// other paths), not how accurately a method solves: study.png draws no Pareto front for the
+// model and says why, and `invfree study` warns. Fewer than 3 points are not judged.
+struct ModelConvergence {
+  std::string model;  // method_model(): "neo-hookean", "linear", ...
+  double slope = 0.0;
+  int points = 0;
+  double error_lo = 0.0, error_hi = 0.0;  // the range of its errors
+  bool judged = false;                    // at least 3 points to fit
+  bool converges = false;  // judged, slope >= kMinConvergenceSlope, error_lo <= kMaxConvergedError
+};
+constexpr double kMinConvergenceSlope = 0.1;
+constexpr double kMaxConvergedError = 0.2;
+
 struct StudyResult {
-  SceneDef scene;  // the scene as given (before any method's settings)
+  SceneDef scene;                    // the scene as given (before any method's settings)
+  std::vector<std::string> methods;  // the study methods that ran (--methods), in table order
   std::vector<double> sample_times;
   double duration = 0.0;
   double reference_h = 0.0, reference_tol = 0.0;
@@ -46,13 +64,30 @@ struct StudyResult {
   // contact time scale (the notes of study.png say why).
   double smooth_slope = 0.0;
   double lecture_slope_small_h = 0.0;  // the fit over the four smallest h of the scene itself
+  std::vector<ModelConvergence> convergence;  // one per model that ran
   double total_wall_s = 0.0;
   bool stopped = false;  // `stop` returned true: the result is incomplete
 };
 
 // Errors in the scene (e.g. a method cannot be applied) are reported in rows; never throws.
-// quick: fewer h, tolerances and meshes, and a coarser reference (h / 100).
+// quick: fewer h, tolerances and meshes, and a coarser reference (h / 100), over the same
+// simulated time as the full study, so every verdict it prints is the full study's (the
+// squeeze that decides them is inside both).
 StudyResult run_study(const SceneDef& scene, const SweepOptions& options);
+
+// The times at which the study compares runs with their reference; the last is how long
+// every run lasts. The same for the quick and the full study.
+std::vector<double> study_sample_times(const SceneDef& scene, bool quick);
+
+// Whether `method` is one of the study's (result.methods; an empty list: every method).
+bool study_ran_method(const StudyResult& result, const std::string& method);
+// The study methods that ran, in table order.
+std::vector<std::string> study_methods_run(const StudyResult& result);
+
+// The convergence of `model` (null when the model did not run).
+const ModelConvergence* model_convergence(const StudyResult& result, const std::string& model);
+// The models judged whose errors do not fall with h (in the order they ran).
+std::vector<const ModelConvergence*> non_converging_models(const StudyResult& result);
 
 std::string study_csv(const StudyResult& result);
 

@@ -20,6 +20,19 @@ std::string join_times(const std::vector<double>& t) {
   return s;
 }
 
+bool ran(const StudyResult& r, const Method& m) {
+  return study_ran_method(r, m.name);
+}
+
+// "neo-hookean (slope -0.04), linear (slope 0.02)": the models whose errors do not fall
+// with h.
+std::string non_converging_list(const StudyResult& r) {
+  std::string s;
+  for (const ModelConvergence* c : non_converging_models(r))
+    s += (s.empty() ? "" : ", ") + c->model + " (slope " + format_number(c->slope, "%.2f") + ")";
+  return s;
+}
+
 // Failed runs are not plotted; they are listed per method in the notes.
 void add_failure_notes(const StudyResult& r, bool (*in_sweep)(const StudyResult&, const StudyRow&),
                        const char* key, std::vector<std::string>& notes) {
@@ -49,6 +62,7 @@ std::vector<const StudyRow*> plotted_rows(const StudyResult& r, const std::strin
 std::vector<Series> h_sweep_series(const StudyResult& r, double StudyRow::*x) {
   std::vector<Series> series;
   for (const Method& m : study_methods()) {
+    if (!ran(r, m)) continue;
     Series s;
     s.label = m.label;
     s.color = method_color(m.name);
@@ -96,6 +110,22 @@ std::vector<size_t> pareto_front(const std::vector<double>& x, const std::vector
 
 namespace {
 
+// Why a model without convergence has no front (the first note of both study.png panels).
+std::string non_converging_note(const StudyResult& r) {
+  std::string s;
+  for (const ModelConvergence* c : non_converging_models(r))
+    s += (s.empty() ? "" : "; ") + c->model + ": errors " + format_number(c->error_lo, "%.2g") +
+         " ... " + format_number(c->error_hi, "%.2g") + ", fitted slope " +
+         format_number(c->slope, "%.2f");
+  return "Errors that do not fall with h, or never come within " +
+         format_number(100 * kMaxConvergedError, "%.0f") + "% of the side (" + s +
+         "; converging errors fall at a slope of at least " +
+         format_number(kMinConvergenceSlope, "%.1f") +
+         "), measure how far each run drifts from the reference - contact events out of phase, "
+         "bodies taking other paths - not how accurately a method solves; they rank nothing, so "
+         "no Pareto front is drawn for these models.";
+}
+
 // The error axis: relative to the square's side, or to a meshed shape's longer side.
 std::string error_label(const StudyResult& r) {
   return scene_has_only_squares(r.scene) ? "RMS node-position error / side length"
@@ -121,14 +151,17 @@ ChartSpec speed_accuracy_panel(const StudyResult& r) {
   // reference, so a point of one model cannot beat a point of another.
   std::vector<std::string> models;
   for (const Method& m : study_methods())
-    if (std::find(models.begin(), models.end(), method_model(m)) == models.end())
+    if (ran(r, m) && std::find(models.begin(), models.end(), method_model(m)) == models.end())
       models.push_back(method_model(m));
   for (const std::string& model : models) {
+    // Errors that do not fall with h rank nothing: no front (the title says why).
+    if (const ModelConvergence* c = model_convergence(r, model); c && c->judged && !c->converges)
+      continue;
     std::vector<double> xs, ys, hs;
     int methods = 0;
     std::string member;
     for (const Method& m : study_methods()) {
-      if (method_model(m) != model) continue;
+      if (!ran(r, m) || method_model(m) != model) continue;
       ++methods;
       member = m.name;
       for (const StudyRow* row : plotted_rows(r, m.name, in_h_sweep)) {
@@ -171,6 +204,10 @@ ChartSpec speed_accuracy_panel(const StudyResult& r) {
       " s; symplectic Euler: h = " + format_number(e_hi) + " ... " + format_number(e_lo) + " s.");
   add_failure_notes(r, in_h_sweep, "h", a.notes);
   for (const std::string& f : r.reference_failures) a.notes.push_back(f);
+  if (const std::string list = non_converging_list(r); !list.empty()) {
+    a.title = "ERRORS DO NOT CONVERGE WITH h, no Pareto front for " + list + ": " + a.title;
+    a.notes.insert(a.notes.begin(), non_converging_note(r));
+  }
   return a;
 }
 
@@ -214,6 +251,10 @@ ChartSpec convergence_panel(const StudyResult& r) {
     }
     b.series.push_back(guide);
   }
+  if (const std::string list = non_converging_list(r); !list.empty()) {
+    b.title = "ERRORS DO NOT CONVERGE WITH h: " + list + "; " + b.title;
+    b.notes.push_back(non_converging_note(r));
+  }
   b.notes.push_back(
       "Fitted slopes of log(error) against log(h), lecture's method over all its h: " +
       format_number(r.smooth_slope, "%.3f") +
@@ -240,6 +281,7 @@ ChartSpec tolerance_panel(const StudyResult& r) {
   c.log_x = c.log_y = true;
   std::string tols;
   for (const Method& m : study_methods()) {
+    if (!ran(r, m)) continue;
     // Explicit methods have no tolerance: an empty, unlabelled series keeps every method's
     // marker shape the same as in the other panels (shapes follow the series index).
     Series s;

@@ -20,6 +20,7 @@ constexpr EnumName<Verdict> kVerdictNames[] = {
     {Verdict::BlewUp, "blew-up"},
     {Verdict::NotApplicable, "n/a"},
     {Verdict::Intersected, "intersected"},
+    {Verdict::InvertedAllowed, "inverted-allowed"},
 };
 }  // namespace
 
@@ -100,6 +101,7 @@ void RunMonitor::start(const Simulation& sim, double duration) {
   const auto det = triangle_det_f(sim);
   started_inverted = std::any_of(det.begin(), det.end(), [](double d) { return !(d > 0.0); });
   recovered = !started_inverted;
+  for (double d : det) min_det_f = std::min(min_det_f, d);
 }
 
 Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
@@ -127,9 +129,15 @@ Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
   }
   if (!inversion_is_failure) return Verdict::Ok;
   const auto det = triangle_det_f(sim);
+  for (double d : det) min_det_f = std::min(min_det_f, d);
   const bool inverted = std::any_of(det.begin(), det.end(), [](double d) { return !(d > 0.0); });
   if (!inverted) {
     recovered = true;
+  } else if (recovered && inversion_allowed) {
+    if (inverted_step < 0) {
+      inverted_step = sim.step_count;
+      inverted_why = "a triangle reached det F <= 0, which the model allows; the run went on";
+    }
   } else if (recovered) {
     *why = "a triangle reached det F <= 0";
     return Verdict::Inverted;
@@ -138,7 +146,7 @@ Verdict RunMonitor::after_step(const Simulation& sim, std::string* why) {
 }
 
 Verdict RunMonitor::at_end(std::string* why) const {
-  if (recovered || !inversion_is_failure) return Verdict::Ok;
+  if (recovered || !inversion_is_failure || inversion_allowed) return Verdict::Ok;
   *why = "started inverted and never recovered (det F <= 0 at the end)";
   return Verdict::Inverted;
 }

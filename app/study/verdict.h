@@ -2,7 +2,9 @@
 //   ok, inverted (det F <= 0), penetrated (a node on or through a plane), non-finite,
 //   newton-failed (iteration cap, no descent, or a broken-down linear solve),
 //   blew-up (energy growth the scene cannot supply, or nodes far outside any place the
-//   scene could carry them), n/a (the method cannot start the scene at all).
+//   scene could carry them), n/a (the method cannot start the scene at all), and
+//   inverted-allowed: not a failure - a model that may invert by design (linear, ARAP,
+//   stable neo-Hookean) reached det F <= 0 and the run went on to its end without failing.
 // Blow-up criterion. Energy E = kinetic + elastic + gravity (core total_energy, barrier
 // excluded; the barrier energy is >= 0, so this only under-counts). Physically
 //   E(t) - E_floor <= E(0) - E_floor + W_ceiling(t)
@@ -13,6 +15,7 @@
 // a tiny floor, so a scene at rest without gravity does not trip on rounding.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -28,7 +31,8 @@ enum class Verdict {
   NewtonFailed,
   BlewUp,
   NotApplicable,
-  Intersected
+  Intersected,
+  InvertedAllowed
 };
 
 const char* verdict_name(Verdict v);  // "ok", "inverted", ..., "n/a"
@@ -50,8 +54,14 @@ struct RunMonitor {
   double minimum_budget = 0.0;
   double box_radius = 0.0;
   Vec2 box_center = Vec2::Zero();
-  bool inversion_is_failure = true;  // false: det F <= 0 is allowed (the study, invertible models)
-  bool started_inverted = false;     // an invertible model may start inverted and recover
+  bool inversion_is_failure = true;  // false: det F <= 0 is not looked at (the study)
+  // With inversion_is_failure: an inversion is recorded (inverted_step, inverted_why) and the
+  // run goes on, for the models that may invert by design (methods.h, inversion_allowed).
+  bool inversion_allowed = false;
+  long inverted_step = -1;
+  std::string inverted_why;
+  double min_det_f = INFINITY;    // over the run, where det F is looked at
+  bool started_inverted = false;  // an invertible model may start inverted and recover
   bool recovered = true;
 
   void start(const Simulation& sim, double duration);
