@@ -1,8 +1,13 @@
 #include "app/scene_options.h"
 
+#include <cstdio>
+#include <mutex>
+#include <set>
+
 #include "scene/scene_fields.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
+#include "scene_io/section_notes.h"
 
 namespace invfree {
 
@@ -42,6 +47,18 @@ std::string mixed_material_error(const std::vector<std::string>& overrides) {
          ": give either E and nu or mu and lambda, not both";
 }
 
+// A scene file's missing term sections (section_notes.h), once per file and process on
+// stderr: a command that resolves its scene again (study's runs, the live window's
+// reload) does not repeat it.
+void note_left_out_sections(const std::string& path) {
+  static std::mutex mutex;
+  static std::set<std::string> noted;
+  std::lock_guard lock(mutex);
+  if (!noted.insert(path).second) return;
+  if (const std::string note = left_out_sections_note_of_file(path); !note.empty())
+    std::fprintf(stderr, "invfree: note: %s\n", note.c_str());
+}
+
 }  // namespace
 
 std::optional<SceneDef> SceneOptions::resolve(std::string* error) const {
@@ -54,6 +71,7 @@ std::optional<SceneDef> SceneOptions::resolve(std::string* error) const {
     *error = load.error;
     return std::nullopt;
   }
+  if (!input_files().empty()) note_left_out_sections(scene);
   // Each override is read and checked alone (its type and range), the scene they make is
   // validated once (apply_overrides); mesh.shape goes last, so that the keys a shape needs
   // (its outline, file, radius, ...) are in place whichever order they are given.

@@ -108,11 +108,13 @@ LineError parse_toml(std::string_view text, const std::string& source, toml::tab
   return {};
 }
 
-// The keys of one [section] into the scene, each key's line into `lines`. Two passes:
+// The keys of one [section] into the scene, each key's line into `lines`, each bad key's
+// error into `errors` (every one: they do not depend on each other). Two passes:
 // `enabled` last, so `enabled = false` wins over the other keys of its section (which
 // switch the term on, as they do in --set) whatever their order.
-LineError read_section(const std::string& k, const toml::table& table, SceneDef& s,
-                       MaterialInput& material, std::map<std::string, int>& lines) {
+void read_section(const std::string& k, const toml::table& table, SceneDef& s,
+                  MaterialInput& material, std::map<std::string, int>& lines,
+                  std::vector<LineError>& errors) {
   for (int pass = 0; pass < 2; ++pass) {
     for (auto&& [sub, value] : table) {
       const std::string sk(sub.str());
@@ -120,13 +122,17 @@ LineError read_section(const std::string& k, const toml::table& table, SceneDef&
       const std::string full = k + "." + printable(sk);
       const int vline = static_cast<int>(value.source().begin.line);
       const SceneField* spec = find_scene_field(k, sk);
-      if (!spec) return {vline, full + ": " + unknown_key_error(k, sk)};
-      if (auto r = apply_key(s, *spec, value, material); !r.empty())
-        return {vline, full + ": " + r};
+      if (!spec) {
+        errors.push_back({vline, full + ": " + unknown_key_error(k, sk)});
+        continue;
+      }
+      if (auto r = apply_key(s, *spec, value, material); !r.empty()) {
+        errors.push_back({vline, full + ": " + r});
+        continue;
+      }
       lines[full] = vline;
     }
   }
-  return {};
 }
 
 }  // namespace
@@ -154,43 +160,59 @@ SceneLoad parse_scene_toml(std::string_view text, const std::string& source) {
   std::map<std::string, int> lines;  // "section.key" the user wrote -> its line
   MaterialInput material;
   std::vector<scene_io::BodyInput> bodies;
+  // Every section's and key's own error (unknown names, wrong types, out of range): they do
+  // not depend on each other, so a student sees all of them at once, in line order. The
+  // checks of the scene as a whole below need every value read, so they come after.
+  std::vector<LineError> errors;
   for (auto&& [key, node] : root) {
     const std::string k(key.str());
     const int line = static_cast<int>(node.source().begin.line);
     if (k == "body") {
       if (auto r = scene_io::read_body_tables(node, bodies); !r.message.empty())
-        return fail(r.line, r.message);
+        errors.push_back({r.line, r.message});
       continue;
     }
     if (k == "traction") {
       if (auto r = scene_io::read_traction_tables(node, s.tractions); !r.message.empty())
-        return fail(r.line, r.message);
+        errors.push_back({r.line, r.message});
       for (const auto& key : scene_io::traction_keys()) lines["traction." + key] = line;
       continue;
     }
     if (k == "name") {
       if (!node.is_string())
-        return fail(line, "name: expected a string, got " + scene_io::toml_type_name(node));
-      s.name = node.as_string()->get();
-      if (has_control_characters(s.name))
-        return fail(line, "name: must not contain control characters");
+        errors.push_back(
+            {line, "name: expected a string, got " + scene_io::toml_type_name(node)});
+      else if (s.name = node.as_string()->get(); has_control_characters(s.name))
+        errors.push_back({line, "name: must not contain control characters"});
       continue;
     }
     const SceneSection* section = find_scene_section(k);
     if (!section) {
-      if (node.is_table()) return fail(line, printable(k) + ": " + unknown_section_error(k));
-      return fail(line, printable(k) +
-                            ": unknown top-level key (only \"name\" and sections are allowed)" +
-                            did_you_mean(k, scene_io::section_names()));
+      if (node.is_table())
+        errors.push_back({line, printable(k) + ": " + unknown_section_error(k)});
+      else
+        errors.push_back({line, printable(k) +
+                                    ": unknown top-level key (only \"name\" and sections are "
+                                    "allowed)" +
+                                    did_you_mean(k, scene_io::section_names())});
+      continue;
     }
     const toml::table* table = node.as_table();
-    if (!table)
-      return fail(line,
-                  k + ": expected a [" + k + "] section, got " + scene_io::toml_type_name(node));
+    if (!table) {
+      errors.push_back(
+          {line, k + ": expected a [" + k + "] section, got " + scene_io::toml_type_name(node)});
+      continue;
+    }
     if (section->term) s.*(section->term) = true;
     if (section->term == &SceneDef::has_self_contact) self_contact_line = line;
-    if (const LineError e = read_section(k, *table, s, material, lines); !e.what.empty())
-      return fail(e.line, e.what);
+    read_section(k, *table, s, material, lines, errors);
+  }
+  if (!errors.empty()) {
+    std::stable_sort(errors.begin(), errors.end(),
+                     [](const LineError& a, const LineError& b) { return a.line < b.line; });
+    std::string all;
+    for (const LineError& e : errors) all += (all.empty() ? "" : "\n") + located(source, e.line, e.what);
+    return SceneLoad{std::nullopt, all};
   }
   if (self_contact_line == 0) s.has_self_contact = self_contact_by_default(s);
   auto line_of = [&](const std::string& key) {

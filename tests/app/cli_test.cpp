@@ -379,5 +379,34 @@ TEST(Cli, StepFailureNamesTheStepAndKeepsCompleteOutput) {
   std::filesystem::remove_all(dir);
 }
 
+// Issue 32 item 11: a scene file without [gravity] runs without gravity, and the command
+// says so once on stderr (a student's stack floated until the ceiling came); a built-in
+// scene, which leaves sections out on purpose, gets no note; a file with every error.
+TEST(Cli, SceneFileWithoutGravitySaysSoOnce) {
+  const std::string path =
+      ::testing::TempDir() + "/no_gravity_" + std::to_string(::getpid()) + ".toml";
+  {
+    std::ofstream f(path);
+    f << "[mesh]\nn_seg = 2\n[ground]\ny = -1.0\n[ceiling]\ny = 0.6\n";
+  }
+  const CommandResult r = run("simulate --steps 2 --scene " + path);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string note = "invfree: note: " + path + ": no [gravity] section, so gravity is off";
+  EXPECT_EQ(r.err.rfind(note, 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  const CommandResult builtin = run("simulate --steps 2 --scene course-0-free-fall");
+  ASSERT_EQ(builtin.code, 0) << builtin.err;
+  EXPECT_EQ(builtin.err, "");
+  {
+    std::ofstream f(path);
+    f << "[mesh]\nn_segs = 2\nsid = 1\n";
+  }
+  const CommandResult bad = run("simulate --steps 2 --scene " + path);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find(path + ":2: mesh.n_segs"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find(path + ":3: mesh.sid"), std::string::npos) << bad.err;
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace invfree

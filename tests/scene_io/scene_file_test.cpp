@@ -17,6 +17,7 @@
 
 #include "scene/initial_state.h"
 #include "scene_io/builtin_scenes.h"
+#include "scene_io/section_notes.h"
 #include "tests/test_paths.h"
 
 namespace invfree {
@@ -906,6 +907,53 @@ TEST(BadInput, ErrorsBlameTheKeyTheUserWrote) {
                      "inverted triangle, which the neo-hookean model cannot start from",
                      "--set");
   report_count("blame");
+}
+
+// Issue 32 item 11: a student's file with several independent mistakes gets all of them
+// at once, one line each, in the file's order (only the first was reported).
+TEST(SceneFiles, EveryIndependentErrorOfAFileIsReportedAtOnce) {
+  const std::string text =
+      "name = \"mine\"\n"      // 1
+      "[mesh]\n"                // 2
+      "n_segs = 8\n"            // 3: unknown key
+      "side = \"big\"\n"        // 4: wrong type
+      "[material]\n"            // 5
+      "E = -5\n"                // 6: out of range
+      "[gravty]\n"              // 7: unknown section
+      "g = [0.0, -9.81]\n";     // 8
+  const SceneLoad load = parse_scene_toml(text, "mine.toml");
+  ASSERT_FALSE(load.scene);
+  std::vector<std::string> lines;
+  std::istringstream in(load.error);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u) << load.error;
+  EXPECT_EQ(lines[0].rfind("mine.toml:3: mesh.n_segs: unknown key", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[1].rfind("mine.toml:4: mesh.side:", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[2].rfind("mine.toml:6: material.E:", 0), 0u) << lines[2];
+  EXPECT_EQ(lines[3].rfind("mine.toml:7: gravty: unknown section", 0), 0u) << lines[3];
+  EXPECT_NE(lines[3].find("gravity"), std::string::npos) << lines[3];  // did you mean
+  // One mistake: one line, as before.
+  const SceneLoad one = parse_scene_toml("[mesh]\nn_segs = 8\n", "one.toml");
+  EXPECT_EQ(one.error.find('\n'), std::string::npos) << one.error;
+}
+
+// Issue 32 item 11: a file without [gravity] (or [ground], [ceiling]) runs with that term
+// off, which the note says; a file with all three gets no note.
+TEST(SceneFiles, LeftOutTermSectionsAreNamed) {
+  const std::string note =
+      left_out_sections_note("[mesh]\nn_seg = 2\n[ground]\ny = -1.0\n", "mine.toml");
+  EXPECT_EQ(note.rfind("mine.toml: no [gravity] section, so gravity is off", 0), 0u) << note;
+  EXPECT_NE(note.find("no [ceiling] section, so there is no ceiling"), std::string::npos) << note;
+  EXPECT_EQ(note.find("[ground]"), std::string::npos) << note;
+  EXPECT_EQ(note.find('\n'), std::string::npos) << note;
+  EXPECT_EQ(left_out_sections_note(
+                "[gravity]\ng = [0.0, -9.81]\n[ground]\ny = -1.0\n[ceiling]\nenabled = false\n",
+                "all.toml"),
+            "");
+  // The scene itself is as the file says: gravity off.
+  const SceneLoad load = parse_scene_toml("[mesh]\nn_seg = 2\n[ground]\ny = -1.0\n", "m.toml");
+  ASSERT_TRUE(load.scene) << load.error;
+  EXPECT_FALSE(load.scene->has_gravity);
 }
 
 }  // namespace
