@@ -7,22 +7,26 @@ namespace invfree::live {
 
 void AutoFitView::fit(const LiveController& lc, const render::PixelRect& visible, bool bodies) {
   render::WorldBox b = render::scene_world_box(lc.settings());
-  if (bodies) {
-    const VecX& x = lc.simulation().x;
-    b = {x[0], x[0], x[1], x[1]};
+  const VecX& x = lc.simulation().x;
+  if (x.size() >= 2) {
+    render::WorldBox nodes{x[0], x[0], x[1], x[1]};
     for (Eigen::Index i = 0; i + 1 < x.size(); i += 2) {
-      b = {std::min(b.x0, x[i]), std::max(b.x1, x[i]), std::min(b.y0, x[i + 1]),
-           std::max(b.y1, x[i + 1])};
+      nodes = {std::min(nodes.x0, x[i]), std::max(nodes.x1, x[i]), std::min(nodes.y0, x[i + 1]),
+               std::max(nodes.y1, x[i + 1])};
     }
-    const double pad =
-        0.15 * std::max({b.x1 - b.x0, b.y1 - b.y0, 0.1 * scene_length_scale(lc.settings())});
-    b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad};
+    const double pad = 0.15 * std::max({nodes.x1 - nodes.x0, nodes.y1 - nodes.y0,
+                                        0.1 * scene_length_scale(lc.settings())});
+    nodes = {nodes.x0 - pad, nodes.x1 + pad, nodes.y0 - pad, nodes.y1 + pad};
+    if (bodies)
+      b = nodes;
+    else
+      b = {std::min(b.x0, nodes.x0), std::max(b.x1, nodes.x1), std::min(b.y0, nodes.y0),
+           std::max(b.y1, nodes.y1)};
   }
   auto_fit_ = true;
   bodies_ = bodies;
   view_.fit({b.x0, b.y0, b.x1, b.y1}, visible.x, visible.y, visible.w, visible.h);
-  scene_index_ = lc.selected_scene();
-  n_seg_ = lc.settings().n_seg;
+  mesh_generation_ = lc.mesh_generation();
 }
 
 void AutoFitView::refit(const LiveController& lc, const render::PixelRect& visible) {
@@ -30,7 +34,7 @@ void AutoFitView::refit(const LiveController& lc, const render::PixelRect& visib
 }
 
 void AutoFitView::follow_scene(const LiveController& lc, const render::PixelRect& visible) {
-  if (lc.selected_scene() != scene_index_ || lc.settings().n_seg != n_seg_) fit(lc, visible);
+  if (lc.mesh_generation() != mesh_generation_) fit(lc, visible);
 }
 
 void AutoFitView::set_size(int width, int height) {

@@ -1,5 +1,6 @@
 // The live window's view of the world (view_transform.h) and the rule that keeps it
-// framed: it fits the scene's stage at the start and for each new scene or mesh, and fits
+// framed: it fits the scene's stage and its bodies (a body may start outside the stage, as
+// course-1's stretched square does) at the start and for each new scene or mesh, and fits
 // again (the stage, or the bodies after F) when the window, the panel or the UI scale
 // changes, until the user pans or zooms; a person who chose a view keeps it.
 #pragma once
@@ -31,7 +32,7 @@ class AutoFitView {
   ViewTransform view_;
   bool auto_fit_ = true;               // refit on layout changes
   bool bodies_ = false;                // the last fit framed the bodies (F), not the whole stage
-  int scene_index_ = -1, n_seg_ = -1;  // what the last fit showed
+  long mesh_generation_ = -1;  // the mesh the last fit showed (a new scene is a new mesh)
 };
 
 }  // namespace invfree::live

@@ -2,8 +2,8 @@
 // chapters in order (course-0's three demos, course-1 ... course-5, the lecture's demo `compress`, then `stack` and
 // `stack-friction`), each with
 // its chapter's one-line idea. The live window's picker lists them first, in chapter order,
-// and its panel shows the selected chapter's idea (docs/scenes.md tables the same chapters);
-// `compress`, the lecture's own scene, keeps its panel as it was (no idea line).
+// and its panel shows the selected chapter's idea (docs/scenes.md tables the same chapters),
+// `compress`, the lecture's own scene, included.
 #pragma once
 
 #include <algorithm>
@@ -29,7 +29,7 @@ inline constexpr CourseChapter kCourse[] = {
     {"course-3-contact", 3, "contact: the IPC barrier and the filtered line search"},
     {"course-4-friction", 4, "lagged friction: sliding down a slope"},
     {"course-5-moving-dirichlet", 5, "a moving Dirichlet boundary: squashed by the ceiling"},
-    {"compress", 6, nullptr},
+    {"compress", 6, "inversion-free: det F > 0 in every step"},
     {"stack", 7, "self-contact: two squares kept apart by the point-edge barrier and CCD"},
     {"stack-friction", 8, "friction between the bodies, lagged as the ground's"},
     {"course-9-affine", 9,

@@ -19,12 +19,17 @@ constexpr KeyBinding kKeys[] = {
     {GLFW_KEY_R, GLFW_MOD_CONTROL, Action::ToggleRecord, "Ctrl+R",
      "start / stop recording a PNG sequence"},
     {GLFW_KEY_F, 0, Action::FitView, "F", "frame the bodies (every node)"},
-    {GLFW_KEY_EQUAL, 0, Action::UiScaleUp, "+", "larger text and panels (UI scale)"},
-    {GLFW_KEY_MINUS, 0, Action::UiScaleDown, "-", "smaller text and panels"},
+    {kTypedKey, 0, Action::UiScaleUp, "+", "larger text and panels (UI scale; also = and numpad +)",
+     "+="},
+    {kTypedKey, 0, Action::UiScaleDown, "-", "smaller text and panels", "-"},
     {GLFW_KEY_D, 0, Action::CycleDetFPanel, "D", "det F panel: beside / over the picture / hidden"},
     {GLFW_KEY_C, 0, Action::CycleColorRange, "C",
      "det F colours: fixed 0.25 to 4 / auto over the run / auto per frame"},
-    {GLFW_KEY_ESCAPE, 0, Action::Quit, "Esc", "release the inspected triangle; quit when none is"},
+    {GLFW_KEY_P, 0, Action::Presentation, "P",
+     "presentation: full screen, no panel, large t, min det F, inverted count"},
+    {GLFW_KEY_ESCAPE, 0, Action::Back, "Esc",
+     "close the open picker, help, presentation or inspector (never quits)"},
+    {GLFW_KEY_Q, GLFW_MOD_CONTROL, Action::Quit, "Ctrl+Q", "quit"},
 };
 
 constexpr MouseBinding kMouse[] = {
@@ -46,7 +51,15 @@ std::span<const MouseBinding> mouse_bindings() {
 std::optional<Action> action_for_key(int key, int mods) {
   const int ctrl = mods & GLFW_MOD_CONTROL;
   for (const auto& b : kKeys)
-    if (b.key == key && (b.mods & GLFW_MOD_CONTROL) == ctrl) return b.action;
+    if (b.key != kTypedKey && b.key == key && (b.mods & GLFW_MOD_CONTROL) == ctrl) return b.action;
+  return std::nullopt;
+}
+
+std::optional<Action> action_for_char(unsigned c) {
+  for (const auto& b : kKeys)
+    if (b.key == kTypedKey && c > 0 && c < 128)
+      for (const char* p = b.chars; *p; ++p)
+        if (static_cast<unsigned>(*p) == c) return b.action;
   return std::nullopt;
 }
 

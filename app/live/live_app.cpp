@@ -10,6 +10,7 @@
 #include <GL/glcorearb.h>  // before GLFW's header, which would include GL/gl.h instead
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // ClosePopupToLevel: Esc closes an open picker
 
 #include <algorithm>
 #include <cstdio>
@@ -20,15 +21,20 @@
 
 #include "app/live/auto_fit_view.h"
 #include "app/live/frame_rate.h"
+#include "app/live/failure_mark.h"
 #include "app/live/frame_recording.h"
 #include "app/live/input_injection.h"
+#include "app/live/input_queue.h"
 #include "app/live/inspector_panel.h"
 #include "app/live/key_bindings.h"
 #include "app/live/landscape_window.h"
 #include "app/live/live_panel.h"
 #include "app/live/panel_layout.h"
 #include "app/live/live_window.h"
+#include "app/live/method_choice.h"
 #include "app/live/mouse_gestures.h"
+#include "app/live/presentation.h"
+#include "app/live/real_time_rate.h"
 #include "app/live/window_capture.h"
 #include "app/render/renderer.h"
 #include "triangle_fields.h"
@@ -92,6 +98,10 @@ struct LiveAppImpl {
   TriangleField field_range_of = TriangleField::DetF;
   long field_range_generation = 0;
   int busy_frames = kBusyFrames;  // frames left to draw before idling
+  long color_range_restarts = -1;  // the controller's restart the colour range's run began at
+  RealTimeRate real_time;
+  bool presenting = false;             // presentation mode (key P)
+  bool panel_before_presenting = true;  // the panel's visibility to return to
 
   ~LiveAppImpl() {
     window.activate();
@@ -149,6 +159,8 @@ struct LiveAppImpl {
 
   void handle_action(Action a);
   void handle_keys();
+  void back();
+  void set_presenting(bool on);
   void pick(const Vec2& world);
   void select(int t) {
     inspection.select(controller->simulation(), t, controller->mesh_generation());
@@ -190,7 +202,7 @@ struct LiveAppImpl {
 #endif
   }
 
-  void build_ui(const Injection* inject);
+  void build_ui(const Injection* inject, const InputFrame* input, bool render);
   std::future<void> draw_picture();
 
   // The screenshot asked for (Ctrl+P, the button), from `capture` when this frame has one.
@@ -204,10 +216,13 @@ struct LiveAppImpl {
   // Frames per second in the window title.
   void count_frame() {
     ++frames;
+    real_time.count(controller->simulation().time, controller->playing());
     if (const std::optional<double> rate = frame_rate.count()) {
       char title[96];
-      std::snprintf(title, sizeof title, "invfree live: %s, %.0f frames/s",
-                    controller->settings().name.c_str(), *rate);
+      const std::optional<double> sim_rate = real_time.rate();
+      std::snprintf(title, sizeof title, "invfree live: %s, %.0f frames/s%s%s",
+                    controller->settings().name.c_str(), *rate, sim_rate ? ", " : "",
+                    sim_rate ? RealTimeRate::text(*sim_rate).c_str() : "");
       window.set_title(title);
     }
   }
@@ -264,23 +279,57 @@ void LiveAppImpl::handle_action(Action a) {
       panel.color_range =
           static_cast<render::ColorRangeMode>((static_cast<int>(panel.color_range) + 1) % 3);
       break;
-    case Action::Quit:  // Esc: first lets go of the inspected triangle
-      if (inspection.selected() >= 0)
-        inspection.release();
-      else
-        window.request_close();
+    case Action::Presentation:
+      set_presenting(!presenting);
+      break;
+    case Action::Back:
+      back();
+      break;
+    case Action::Quit:
+      window.request_close();
       break;
   }
 }
 
+// Esc closes what is open, the innermost first, and never quits: a stray Esc (the picker
+// was open, the help shown) used to end the run and lose every edited setting.
+void LiveAppImpl::back() {
+  if (ImGui::GetCurrentContext()->OpenPopupStack.Size > 0)
+    ImGui::ClosePopupToLevel(0, true);  // a picker's list
+  else if (panel.show_help)
+    panel.show_help = false;
+  else if (presenting)
+    set_presenting(false);
+  else if (inspection.selected() >= 0)
+    inspection.release();
+  else
+    controller->note = "Esc closes pickers and overlays; Ctrl+Q quits";
+}
+
+// Presentation mode: full screen without the panel; leaving it restores both.
+void LiveAppImpl::set_presenting(bool on) {
+  if (on == presenting) return;
+  presenting = on;
+  if (on) panel_before_presenting = panel.visible;
+  panel.visible = on ? false : panel_before_presenting;
+  window.set_fullscreen(on);
+  resize_if_needed();
+  view.refit(*controller, visible_rect());
+}
+
 void LiveAppImpl::handle_keys() {
   const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantCaptureKeyboard) return;  // typing into a panel field
+  if (io.WantTextInput) return;  // typing into a panel field (its Esc cancels the typing)
+  if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) back();  // also while a picker is open
+  if (io.WantCaptureKeyboard) return;
   for (const auto& b : key_bindings()) {
-    if (!ImGui::IsKeyPressed(b.key, false)) continue;
+    if (b.key == kTypedKey || b.action == Action::Back || !ImGui::IsKeyPressed(b.key, false))
+      continue;
     if (auto a = action_for_key(b.key, io.KeyCtrl ? GLFW_MOD_CONTROL : 0); a && *a == b.action)
       handle_action(*a);
   }
+  for (ImWchar c : io.InputQueueCharacters)  // + and -, whichever key typed them
+    if (const std::optional<Action> a = action_for_char(c)) handle_action(*a);
 }
 
 // A click on the picture: the triangle under it is inspected; a click on empty space lets
@@ -325,9 +374,11 @@ void LiveAppImpl::draw_inspection_windows(const WidgetRect& area) {
 
 // The ImGui frame: input, the panel and what it asks for, the inspector, the help overlay,
 // the banners over the picture and the grab markers.
-void LiveAppImpl::build_ui(const Injection* inject) {
+// `input`: the frame's share of the window's events (input_queue.h); with `render` false the
+// frame only takes input (an earlier share of this frame's events): it ends without drawing.
+void LiveAppImpl::build_ui(const Injection* inject, const InputFrame* input, bool render) {
   apply_ui_scale();
-  window.begin_imgui_frame();
+  window.begin_imgui_frame(inject ? nullptr : input);
   if (inject) injection.apply(*inject);
   ImGui::NewFrame();
   handle_keys();
@@ -352,8 +403,17 @@ void LiveAppImpl::build_ui(const Injection* inject) {
   part_times.inspection_ms += thread_cpu_ms() - inspection_start;
   draw_help_overlay(panel);
   draw_banners(*controller, panel, area);
+  if (!controller->banner.empty()) draw_failure_mark(*controller, area);
+  if (presenting)
+    draw_presentation_readouts(*controller, panel, area, real_time.rate(),
+                               solver_caption(controller->settings()));
+  else if (options.frames <= 0 && controller->playing() && real_time.rate())
+    draw_real_time_rate(*real_time.rate(), area);  // (a scripted run's picture: no clock)
   mouse.draw_markers(*controller, view.transform(), ps);
-  ImGui::Render();
+  if (render)
+    ImGui::Render();
+  else
+    ImGui::EndFrame();
 }
 
 // The picture: the shared renderer's frame with the live camera, drawn straight into the
@@ -372,6 +432,10 @@ std::future<void> LiveAppImpl::draw_picture() {
   draw_options.selected_triangle = inspection.selected();
   draw_options.stress_glyphs = panel.stress_glyphs;
   color_range.mode = panel.color_range;
+  if (controller->restarts() != color_range_restarts) {  // a reset or another scene
+    color_range.reset();
+    color_range_restarts = controller->restarts();
+  }
   color_range.apply(controller->stats().min_det_f, controller->stats().max_det_f, &draw_options);
   const double capture_start = thread_cpu_ms();
   const render::FrameState state = render::capture_frame_state(
@@ -404,7 +468,12 @@ void LiveAppImpl::frame(const Injection* inject, Image* capture) {
   if (wait && !input && !window.should_close()) return;  // nothing new to draw
   busy_frames = input || inject ? kBusyFrames : busy_frames - 1;
   resize_if_needed();
-  build_ui(inject);
+  // Every event in order: the earlier shares of this frame's input each get an ImGui frame
+  // of their own (no drawing), so a press and its release between two slow frames both act.
+  std::vector<InputFrame> events = window.take_input();
+  if (!inject)
+    for (std::size_t k = 0; k + 1 < events.size(); ++k) build_ui(nullptr, &events[k], false);
+  build_ui(inject, inject ? nullptr : &events.back(), true);
   std::future<void> stepping = draw_picture();
   window.draw_imgui(renderer->width(), renderer->height());
   if (capture) *capture = read_window(window.gl(), renderer->width(), renderer->height());
@@ -514,6 +583,15 @@ TriangleField LiveApp::color_by() const {
 }
 void LiveApp::set_color_by(TriangleField field) {
   impl_->panel.color_by = field;
+}
+bool LiveApp::presenting() const {
+  return impl_->presenting;
+}
+std::optional<double> LiveApp::real_time_rate() const {
+  return impl_->real_time.rate();
+}
+std::pair<double, double> LiveApp::color_range_run() const {
+  return {impl_->color_range.run_lo, impl_->color_range.run_hi};
 }
 
 }  // namespace invfree::live

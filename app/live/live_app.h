@@ -18,6 +18,8 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -141,6 +143,12 @@ class LiveApp {
   // What the panel's view section colours the triangles by (its combo, or this setter).
   TriangleField color_by() const;
   void set_color_by(TriangleField field);
+  // Presentation mode (key P): full screen, no panel, large readouts.
+  bool presenting() const;
+  // Simulated seconds per real second while playing (real_time_rate.h), once measured.
+  std::optional<double> real_time_rate() const;
+  // The det F colour range's bounds gathered over the run (auto over the run), [lo, hi].
+  std::pair<double, double> color_range_run() const;
 
  private:
   LiveApp();

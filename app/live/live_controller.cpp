@@ -17,6 +17,7 @@ LiveController::LiveController(std::vector<SceneChoice> scenes, int selected)
 
 void LiveController::restart(const SceneDef& scene) {
   sim_ = make_simulation(scene);
+  ++restarts_;
   pull_node_ = -1;
   sync_pull();
   banner.clear();
@@ -109,7 +110,19 @@ void LiveController::select_scene(int index) {
   selected_ = std::clamp(index, 0, static_cast<int>(scenes_.size()) - 1);
   ++mesh_generation_;
   restart(scenes_[selected_].scene);
+  playing_ = false;
   note.clear();
+}
+
+bool LiveController::restart_with(const SceneDef& next) {
+  if (const std::string e = validate_scene(next); !e.empty()) {
+    note = "not applied: " + e;
+    return false;
+  }
+  if (needs_new_mesh(sim_.scene, next)) ++mesh_generation_;
+  restart(next);
+  note.clear();
+  return true;
 }
 
 void LiveController::begin_pull(int node, const Vec2& target) {

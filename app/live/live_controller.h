@@ -53,9 +53,15 @@ class LiveController {
   // Validates `next` and applies it (see the header comment). Returns true when applied;
   // otherwise `note` says why and nothing changed.
   bool apply(const SceneDef& next);
+  // Validates `next` and restarts from its initial state (the method picker: another
+  // solver from t = 0, not from a state the old one reached). Returns true when applied;
+  // otherwise `note` says why and nothing changed.
+  bool restart_with(const SceneDef& next);
   const std::vector<SceneChoice>& scenes() const { return scenes_; }
   int selected_scene() const { return selected_; }
-  void select_scene(int index);  // loads that scene's settings and restarts
+  // Loads that scene's settings and restarts it paused at t = 0: a class sees a new scene's
+  // start, and it plays when the teacher presses Space.
+  void select_scene(int index);
   void restore_scene_defaults() { select_scene(selected_); }
 
   // --- the grab spring: node `node` pulled toward `target` while dragging
@@ -81,7 +87,7 @@ class LiveController {
   // Kinetic, elastic, gravitational and contact energy (J, core/energy_report.h) over the
   // last steps, in that order (kEnergyNames); gravitational as its change since the
   // (re)start, so that the exchange between the four shows on one axis.
-  static constexpr const char* kEnergyNames[4] = {"kinetic", "elastic", "gravity (change)",
+  static constexpr const char* kEnergyNames[4] = {"kinetic", "elastic", "\xce\x94gravity",
                                                   "contact"};
   const std::array<StatsHistory, 4>& energy_history() const { return energy_history_; }
   // Changes whenever the state or the settings change (a picture of an unchanged
@@ -90,6 +96,9 @@ class LiveController {
   // Changes whenever the mesh is rebuilt (another scene, n_seg, springs <-> triangles), not
   // on a reset: a triangle's index names the same triangle while it stays.
   long mesh_generation() const { return mesh_generation_; }
+  // Changes on every restart from an initial state (reset, another scene, a new mesh):
+  // what is gathered over a run (the colour range's run bounds) starts again.
+  long restarts() const { return restarts_; }
   // Node closest to `p` within `radius` (world units), or -1.
   int nearest_node(const Vec2& p, double radius) const;
 
@@ -117,6 +126,7 @@ class LiveController {
                                               StatsHistory(400), StatsHistory(400)};
   long revision_ = 0;
   long mesh_generation_ = 0;
+  long restarts_ = 0;
   long steps_total_ = 0;
   double step_ms_total_ = 0.0;
   int pull_node_ = -1;

@@ -10,6 +10,8 @@
 #include <numeric>
 
 #include "app/body_extent.h"
+#include "app/live/method_picker.h"
+#include "app/live/scene_label.h"
 #include "app/live/course.h"
 #include "app/live/key_bindings.h"
 #include "app/live/log_slider.h"
@@ -244,13 +246,27 @@ void playback_section(LiveController& lc, PanelState& ps, PanelRequests& req) {
 void scene_section(LiveController& lc, PanelState& ps) {
   const auto& scenes = lc.scenes();
   int sel = lc.selected_scene();
-  if (ImGui::BeginCombo("scene", scenes[sel].label.c_str())) {
+  // The whole row but the restore button, and the list as wide as its longest name: no
+  // name is clipped; a scene file shows as its file name (its path in the tooltip).
+  float widest = 0.0f;
+  for (const SceneChoice& c : scenes)
+    widest = std::max(widest, ImGui::CalcTextSize(scene_display_name(c.label).c_str()).x);
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x -
+                          ImGui::CalcTextSize("restore").x - 3.0f * ImGui::GetStyle().ItemSpacing.x);
+  ImGui::SetNextWindowSizeConstraints(
+      ImVec2(widest + 3.0f * ImGui::GetStyle().WindowPadding.x, 0.0f), ImVec2(FLT_MAX, FLT_MAX));
+  if (ImGui::BeginCombo("##scene", scene_display_name(scenes[sel].label).c_str())) {
     for (int i = 0; i < static_cast<int>(scenes.size()); ++i) {
-      if (ImGui::Selectable(scenes[i].label.c_str(), i == sel)) lc.select_scene(i);
+      if (ImGui::Selectable(scene_display_name(scenes[i].label).c_str(), i == sel))
+        lc.select_scene(i);
+      if (scene_display_name(scenes[i].label) != scenes[i].label && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", scenes[i].label.c_str());
     }
     ImGui::EndCombo();
   }
   remember(ps, "scene");
+  if (scene_display_name(scenes[sel].label) != scenes[sel].label && ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", scenes[sel].label.c_str());
   ImGui::SameLine();
   if (ImGui::SmallButton("restore")) lc.restore_scene_defaults();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the scene's own settings, from its initial state");
@@ -265,7 +281,10 @@ void scene_section(LiveController& lc, PanelState& ps) {
   // switch either way (the mesh is rebuilt).
   const char* shown =
       next.has_mass_spring ? kMassSpringLabel : render::model_display_name(next.model);
-  if (ImGui::BeginCombo("model", shown)) {
+  // The model and the method (method_picker.h) share a row.
+  const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
+  ImGui::SetNextItemWidth(half);
+  if (ImGui::BeginCombo("##model", shown)) {
     for (Model m : models) {
       std::string label = render::model_display_name(m);
       if (model_allows_inversion(m)) label += "  (allows det F <= 0)";
@@ -283,6 +302,10 @@ void scene_section(LiveController& lc, PanelState& ps) {
     ImGui::EndCombo();
   }
   remember(ps, "model");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the material model");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(half);
+  method_row(lc, ps);
 }
 
 void material_section(LiveController& lc, PanelState& ps) {
@@ -297,6 +320,7 @@ void material_section(LiveController& lc, PanelState& ps) {
     }
     return;
   }
+  body_materials_rows(lc, ps);
   const LogSlider mu_map{kMuRange.lo, kMuRange.hi};
   const LogSlider lambda_map{kLambdaLogMin, kLambdaRange.hi, true};
   double v = 0.0;
@@ -488,14 +512,21 @@ void labelled_plot(PanelState& ps, const char* name, const char* title,
 // Kinetic, elastic, gravitational and contact energy over the last steps on one y axis
 // (its range written beside it), with a coloured legend.
 void energy_plot(const LiveController& lc, PanelState& ps) {
-  static const ImU32 colors[4] = {IM_COL32(240, 170, 40, 255), IM_COL32(90, 170, 255, 255),
-                                  IM_COL32(150, 220, 120, 255), IM_COL32(240, 90, 90, 255)};
+  // The four, then their total (white): what implicit Euler's damping takes out of it
+  // shows as the total falling.
+  static const ImU32 colors[5] = {IM_COL32(240, 170, 40, 255), IM_COL32(90, 170, 255, 255),
+                                  IM_COL32(150, 220, 120, 255), IM_COL32(240, 90, 90, 255),
+                                  IM_COL32(245, 245, 245, 255)};
   const auto& history = lc.energy_history();
-  std::vector<float> series[4];
+  std::vector<float> series[5];
   float lo = 0.0f, hi = 0.0f;
   bool any = false;
-  for (int k = 0; k < 4; ++k) {
-    series[k] = history[k].values();
+  for (int k = 0; k < 4; ++k) series[k] = history[k].values();
+  series[4] = series[0];
+  for (int k = 1; k < 4; ++k)
+    for (std::size_t i = 0; i < series[4].size() && i < series[k].size(); ++i)
+      series[4][i] += series[k][i];
+  for (int k = 0; k < 5; ++k) {
     for (float v : series[k]) {
       lo = any ? std::min(lo, v) : v;
       hi = any ? std::max(hi, v) : v;
@@ -506,15 +537,21 @@ void energy_plot(const LiveController& lc, PanelState& ps) {
     lo -= 5e-4f;
     hi += 5e-4f;
   }
-  for (int k = 0; k < 4; ++k) {
-    if (k > 0) ImGui::SameLine();
+  static const char* const kTotal = "total";
+  for (int k = 0; k < 5; ++k) {
+    // The legend wraps where the panel's width ends (a scale of 3 fits two names a row).
+    const char* name = k < 4 ? LiveController::kEnergyNames[k] : kTotal;
+    if (k > 0 && ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x +
+                         ImGui::CalcTextSize(name).x <
+                     ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x)
+      ImGui::SameLine();
     ImGui::PushStyleColor(ImGuiCol_Text, colors[k]);
-    ImGui::TextUnformatted(LiveController::kEnergyNames[k]);
+    ImGui::TextUnformatted(name);
     ImGui::PopStyleColor();
   }
   char top[32], bottom[32];
-  std::snprintf(top, sizeof top, "%.3g", hi);
-  std::snprintf(bottom, sizeof bottom, "%.3g", lo);
+  std::snprintf(top, sizeof top, "%.3g J", hi);
+  std::snprintf(bottom, sizeof bottom, "%.3g J", lo);
   const ImGuiStyle& style = ImGui::GetStyle();
   const float label_w = std::max(ImGui::CalcTextSize(top).x, ImGui::CalcTextSize(bottom).x);
   const float h = 3.0f * ImGui::GetTextLineHeightWithSpacing();
@@ -524,7 +561,7 @@ void energy_plot(const LiveController& lc, PanelState& ps) {
   remember(ps, "energy_plot");
   ImDrawList* dl = ImGui::GetWindowDrawList();
   dl->AddRectFilled(a, b, ImGui::GetColorU32(ImGuiCol_FrameBg), style.FrameRounding);
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 5; ++k) {
     const auto& v = series[k];
     if (v.size() < 2) continue;
     std::vector<ImVec2> points(v.size());

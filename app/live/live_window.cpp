@@ -44,6 +44,13 @@ void LiveWindow::note_input(GLFWwindow* window) {
     self->input_seen_ = true;
 }
 
+void LiveWindow::queue_input(GLFWwindow* window, const InputEvent& e) {
+  if (auto* self = static_cast<LiveWindow*>(glfwGetWindowUserPointer(window))) {
+    self->queue_.push(e);
+    self->input_seen_ = true;
+  }
+}
+
 LiveWindow::~LiveWindow() {
   activate();
   if (imgui_gl_) ImGui_ImplOpenGL3_Shutdown();
@@ -91,19 +98,44 @@ std::string LiveWindow::start_imgui() {
   ImGui::StyleColorsDark();
   ImGui::GetStyle().FrameRounding = 3.0f;
   base_style_ = ImGui::GetStyle();
-  // Any input ends the idle wait. Ours first: ImGui's backend installs its own callbacks
-  // and calls these from them.
-  glfwSetKeyCallback(window_, [](GLFWwindow* w, int, int, int, int) { note_input(w); });
-  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned) { note_input(w); });
-  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) { note_input(w); });
-  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int, int, int) { note_input(w); });
-  glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double) { note_input(w); });
+  // Any input ends the idle wait, and every key, character, button, move and wheel event
+  // goes into the queue in order (input_queue.h) instead of straight into ImGui's io, where
+  // the backend's callbacks would keep only each frame's last state.
+  glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+    if (action != GLFW_REPEAT) queue_input(w, {InputEvent::Key, key, action == GLFW_PRESS});
+    note_input(w);
+  });
+  glfwSetCharCallback(window_, [](GLFWwindow* w, unsigned c) {
+    queue_input(w, {InputEvent::Char, static_cast<int>(c)});
+  });
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
+    queue_input(w, {InputEvent::Move, 0, false, static_cast<float>(x), static_cast<float>(y)});
+  });
+  glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
+#ifdef __EMSCRIPTEN__
+    // The browser's GLFW reports a touch's press without a move to where it is.
+    double x = 0, y = 0;
+    glfwGetCursorPos(w, &x, &y);
+    queue_input(w, {InputEvent::Move, 0, false, static_cast<float>(x), static_cast<float>(y)});
+#endif
+    queue_input(w, {InputEvent::Button, button, action == GLFW_PRESS});
+  });
+  glfwSetScrollCallback(window_, [](GLFWwindow* w, double x, double y) {
+    queue_input(w, {InputEvent::Scroll, 0, false, static_cast<float>(x), static_cast<float>(y)});
+  });
   glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { note_input(w); });
-  glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int) { note_input(w); });
-  glfwSetCursorEnterCallback(window_, [](GLFWwindow* w, int) { note_input(w); });
+  glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int focused) {
+    ImGui_ImplGlfw_WindowFocusCallback(w, focused);
+    note_input(w);
+  });
+  glfwSetCursorEnterCallback(window_, [](GLFWwindow* w, int entered) {
+    ImGui_ImplGlfw_CursorEnterCallback(w, entered);
+    if (!entered) queue_input(w, {InputEvent::Leave});
+    note_input(w);
+  });
   // The window was uncovered: draw it again.
   glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) { note_input(w); });
-  if (!ImGui_ImplGlfw_InitForOpenGL(window_, true)) return "ImGui's GLFW backend could not start";
+  if (!ImGui_ImplGlfw_InitForOpenGL(window_, false)) return "ImGui's GLFW backend could not start";
   imgui_glfw_ = true;
   if (!ImGui_ImplOpenGL3_Init(gl_.opengl_es ? "#version 300 es" : "#version 330 core"))
     return "ImGui's OpenGL3 backend could not start";
@@ -195,10 +227,14 @@ bool LiveWindow::take_events(bool wait) {
   return seen;
 }
 
-void LiveWindow::begin_imgui_frame() {
+void LiveWindow::begin_imgui_frame(const InputFrame* input) {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   imgui_frame_begun_ = true;
+  ImGuiIO& io = ImGui::GetIO();
+  // The frames of one batch of input follow each other at once: ImGui needs time to pass.
+  io.DeltaTime = std::max(io.DeltaTime, 1e-4f);
+  if (input) apply_input_frame(*input, pointer_);
 }
 
 void LiveWindow::draw_imgui(int width, int height) {
@@ -217,6 +253,26 @@ bool LiveWindow::should_close() const {
 
 void LiveWindow::request_close() {
   glfwSetWindowShouldClose(window_, GLFW_TRUE);
+}
+
+void LiveWindow::set_fullscreen(bool on) {
+#ifndef __EMSCRIPTEN__
+  const bool is_on = glfwGetWindowMonitor(window_) != nullptr;
+  if (on == is_on) return;
+  if (on) {
+    GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+    const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+    if (!mode) return;
+    glfwGetWindowPos(window_, &windowed_[0], &windowed_[1]);
+    glfwGetWindowSize(window_, &windowed_[2], &windowed_[3]);
+    glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+  } else {
+    glfwSetWindowMonitor(window_, nullptr, windowed_[0], windowed_[1], windowed_[2], windowed_[3],
+                         0);
+  }
+#else
+  (void)on;
+#endif
 }
 
 void LiveWindow::set_title(const std::string& title) {

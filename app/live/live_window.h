@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "app/live/input_queue.h"
 #include "app/render/gl_api.h"
 
 struct GLFWwindow;
@@ -54,17 +55,25 @@ class LiveWindow {
   // The events since the last call; with `wait`, waits for one first (a short while at most,
   // so that Ctrl-C and --frames still end the run). Returns whether input arrived.
   bool take_events(bool wait);
-  // The backends' part of a new ImGui frame (input, the font texture); ImGui::NewFrame next.
-  void begin_imgui_frame();
+  // The input events since the last call, in the ImGui frames they need (input_queue.h).
+  std::vector<InputFrame> take_input() { return queue_.take(); }
+  // The backends' part of a new ImGui frame (the font texture, the frame's time; the
+  // pointer as the system has it now), then `input`'s events (null: a test's Injection
+  // follows instead); ImGui::NewFrame next.
+  void begin_imgui_frame(const InputFrame* input);
   // ImGui's draw data over the window's back buffer (framebuffer size width x height).
   void draw_imgui(int width, int height);
   void present();
   bool should_close() const;
   void request_close();
   void set_title(const std::string& title);
+  // The window on the whole primary monitor, or back to where and how large it was. The
+  // browser's page cannot (its F11 can): there it does nothing.
+  void set_fullscreen(bool on);
 
  private:
   static void note_input(GLFWwindow* window);  // from GLFW's callbacks
+  static void queue_input(GLFWwindow* window, const InputEvent& e);
 
   GLFWwindow* window_ = nullptr;
   render::GlApi gl_;
@@ -74,6 +83,9 @@ class LiveWindow {
   ImGuiStyle base_style_;           // the style at UI scale 1
   ImVector<ImWchar> glyph_ranges_;  // the fonts' characters; the atlas reads them when built
   bool input_seen_ = false;
+  InputQueue queue_;
+  int windowed_[4] = {0, 0, 0, 0};  // x, y, width, height before full screen
+  PointerState pointer_;
 };
 
 }  // namespace invfree::live

@@ -17,6 +17,9 @@
 #include "app/live/key_bindings.h"
 #include "app/live/live_controller.h"
 #include "app/live/log_slider.h"
+#include "app/live/method_choice.h"
+#include "app/live/real_time_rate.h"
+#include "app/live/scene_label.h"
 #include "app/live/output_naming.h"
 #include "app/live/param_limits.h"
 #include "app/live/plot_range.h"
@@ -202,13 +205,24 @@ TEST(LiveKeys, KeysMapToTheirActionsOnceAndAreInTheHelp) {
   EXPECT_EQ(action_for_key(GLFW_KEY_TAB, 0), Action::TogglePanel);
   EXPECT_EQ(action_for_key(GLFW_KEY_F1, 0), Action::ToggleHelp);
   EXPECT_EQ(action_for_key(GLFW_KEY_P, GLFW_MOD_CONTROL), Action::Screenshot);
-  EXPECT_EQ(action_for_key(GLFW_KEY_ESCAPE, 0), Action::Quit);
-  EXPECT_EQ(action_for_key(GLFW_KEY_P, 0), std::nullopt);
+  // Esc closes what is open and never quits; Ctrl+Q quits (issue 32).
+  EXPECT_EQ(action_for_key(GLFW_KEY_ESCAPE, 0), Action::Back);
+  EXPECT_EQ(action_for_key(GLFW_KEY_Q, GLFW_MOD_CONTROL), Action::Quit);
+  EXPECT_EQ(action_for_key(GLFW_KEY_Q, 0), std::nullopt);
+  EXPECT_EQ(action_for_key(GLFW_KEY_P, 0), Action::Presentation);
+  // + and - are what is typed, on any layout: the = key's '=', a keypad's or a German
+  // keyboard's '+'; the key code of the = key alone does nothing.
+  EXPECT_EQ(action_for_char('+'), Action::UiScaleUp);
+  EXPECT_EQ(action_for_char('='), Action::UiScaleUp);
+  EXPECT_EQ(action_for_char('-'), Action::UiScaleDown);
+  EXPECT_EQ(action_for_char('r'), std::nullopt);
+  EXPECT_EQ(action_for_key(GLFW_KEY_EQUAL, 0), std::nullopt);
   EXPECT_EQ(action_for_key(GLFW_KEY_SPACE, GLFW_MOD_SHIFT), Action::TogglePlay);
   std::set<std::pair<int, int>> seen;
   const std::string help = help_text();
   for (const auto& b : key_bindings()) {
-    EXPECT_TRUE(seen.insert({b.key, b.mods}).second) << b.key_name << " bound twice";
+    const int code = b.key == kTypedKey ? 1000 + b.chars[0] : b.key;
+    EXPECT_TRUE(seen.insert({code, b.mods}).second) << b.key_name << " bound twice";
     EXPECT_NE(help.find(b.key_name), std::string::npos) << b.key_name;
     EXPECT_NE(help.find(b.description), std::string::npos);
   }
@@ -440,7 +454,7 @@ TEST(LiveController, StatsFollowTheState) {
 
 // The picker lists the course first, in chapter order from chapter 0 (its three demos) on,
 // every chapter 0 to 8 there (each a built-in scene), then the other built-in scenes; each
-// chapter but the lecture's own has an idea.
+// chapter has an idea, the lecture's own `compress` too (issue 32: it had none).
 TEST(Course, ThePickerListsTheChaptersInOrderThenTheRest) {
   std::vector<std::string> names;
   for (const auto& e : builtin_scenes()) names.emplace_back(e.name);
@@ -453,7 +467,7 @@ TEST(Course, ThePickerListsTheChaptersInOrderThenTheRest) {
       EXPECT_GE(kCourse[k].chapter, kCourse[k - 1].chapter) << kCourse[k].scene;
     }
     chapters.insert(kCourse[k].chapter);
-    EXPECT_EQ(kCourse[k].idea == nullptr, std::string(kCourse[k].scene) == "compress");
+    EXPECT_NE(kCourse[k].idea, nullptr) << kCourse[k].scene;
   }
   for (int c = 0; c <= 8; ++c) EXPECT_EQ(chapters.count(c), 1u) << "chapter " << c;
   EXPECT_EQ(names[0], "course-0-free-fall");
@@ -478,6 +492,98 @@ TEST(PlotRange, HoldsTheDataAndSpansAtLeastTheMinimum) {
   EXPECT_EQ(w.hi, 5.0f);
   const PlotRange none = plot_y_range({}, 1.0f);
   EXPECT_EQ(none.hi - none.lo, 1.0f);
+}
+
+}  // namespace
+}  // namespace invfree::live
+
+namespace invfree::live {
+namespace {
+
+std::vector<SceneChoice> two_scenes() {
+  std::vector<SceneChoice> c;
+  for (const char* name : {"compress", "course-1-mass-spring"})
+    c.push_back({name, *load_builtin_scene(name).scene});
+  return c;
+}
+
+// Issue 32: a new scene started playing at once, so the class missed its start.
+TEST(LiveController, ANewSceneStartsPausedAtTimeZero) {
+  LiveController lc(two_scenes(), 0);
+  lc.set_playing(true);
+  for (int k = 0; k < 5; ++k) ASSERT_TRUE(lc.step_once());
+  const long restarts = lc.restarts();
+  lc.select_scene(1);
+  EXPECT_FALSE(lc.playing());
+  EXPECT_EQ(lc.simulation().step_count, 0);
+  EXPECT_EQ(lc.simulation().time, 0.0);
+  EXPECT_GT(lc.restarts(), restarts);
+  EXPECT_EQ(lc.advance_frame(), 0);  // nothing moves until play
+  EXPECT_EQ(lc.simulation().step_count, 0);
+  const long after_select = lc.restarts();
+  lc.reset();
+  EXPECT_GT(lc.restarts(), after_select);  // R restarts the run's gathering too
+}
+
+// The method picker: each method is the study's overrides on the edited scene; switching
+// restarts at t = 0 and keeps the rest (material, mesh, time step); symplectic Euler's h is
+// the implicit h over its substeps, and switching back gives the h that was set.
+TEST(LiveMethods, SwitchingKeepsTheOtherSettingsAndRestarts) {
+  LiveController lc(two_scenes(), 0);
+  SceneDef edited = lc.settings();
+  edited.lame.mu *= 2.0;
+  edited.h = 0.005;
+  edited.n_seg = 6;
+  ASSERT_TRUE(lc.apply(edited)) << lc.note;
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(lc.step_once());
+  ASSERT_NE(current_method(lc.settings()), nullptr);
+  EXPECT_STREQ(current_method(lc.settings())->name, "lecture");
+  EXPECT_NE(solver_caption(lc.settings()).find("implicit Euler"), std::string::npos);
+  for (const LiveMethod& m : live_methods()) {
+    const Method* method = find_method(m.name);
+    ASSERT_NE(method, nullptr) << m.name;
+    SceneDef next;
+    ASSERT_EQ(switch_method(lc.settings(), *method, &next), "") << m.name;
+    ASSERT_TRUE(lc.restart_with(next)) << lc.note;
+    EXPECT_EQ(lc.simulation().step_count, 0) << m.name;
+    ASSERT_NE(current_method(lc.settings()), nullptr) << m.name;
+    EXPECT_STREQ(current_method(lc.settings())->name, m.name);
+    EXPECT_EQ(lc.settings().lame.mu, edited.lame.mu) << m.name;
+    EXPECT_EQ(lc.settings().n_seg, 6) << m.name;
+    EXPECT_DOUBLE_EQ(lc.settings().h, 0.005 / method->substeps) << m.name;
+    EXPECT_TRUE(lc.step_once()) << m.name << ": " << lc.banner;
+  }
+  SceneDef back;
+  ASSERT_EQ(switch_method(lc.settings(), *find_method("symplectic-euler"), &back), "");
+  ASSERT_TRUE(lc.restart_with(back));
+  EXPECT_NE(solver_caption(lc.settings()).find("symplectic Euler"), std::string::npos);
+  ASSERT_EQ(switch_method(lc.settings(), *find_method("no-projection"), &back), "");
+  ASSERT_TRUE(lc.restart_with(back));
+  EXPECT_DOUBLE_EQ(lc.settings().h, 0.005);
+  EXPECT_NE(solver_caption(lc.settings()).find("no projection"), std::string::npos);
+  SceneDef arap = lc.settings();
+  arap.model = Model::Arap;
+  EXPECT_EQ(current_method(arap), nullptr);  // none of the picker's
+}
+
+TEST(LiveScenes, AFileShowsAsItsFileName) {
+  EXPECT_EQ(scene_display_name("compress"), "compress");
+  EXPECT_EQ(scene_display_name("/home/teacher/lectures/week 3/my-long-scene.toml"),
+            "my-long-scene.toml");
+  EXPECT_EQ(scene_display_name("scenes/a.toml"), "a.toml");
+}
+
+TEST(LiveRealTime, RateIsSimulatedOverWallSeconds) {
+  RealTimeRate r;
+  EXPECT_FALSE(r.rate());
+  for (int k = 0; k <= 100; ++k) r.count(0.002 * k, true, 0.01 * k);  // 0.2 s per second
+  ASSERT_TRUE(r.rate());
+  EXPECT_NEAR(*r.rate(), 0.2, 1e-9);
+  EXPECT_EQ(RealTimeRate::text(0.2), "0.2\u00d7 real time");
+  r.count(0.0, true, 1.02);  // a reset: the time went back
+  EXPECT_FALSE(r.rate());
+  r.count(0.5, false, 3.0);  // paused
+  EXPECT_FALSE(r.rate());
 }
 
 }  // namespace

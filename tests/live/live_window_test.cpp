@@ -191,10 +191,11 @@ TEST(LiveWindow, KeyboardShortcutsAct) {
   o.screenshot_dir = temp_dir();
   auto app = open_app(o);
   ASSERT_TRUE(app);
-  auto press = [&](int key, bool ctrl = false) {
+  auto press = [&](int key, bool ctrl = false, const char* text = "") {
     Injection in;
     in.keys = {key};
     in.ctrl = ctrl;
+    in.text = text;
     app->frame(&in);
     Injection up;
     up.ctrl = ctrl;
@@ -225,13 +226,14 @@ TEST(LiveWindow, KeyboardShortcutsAct) {
   EXPECT_EQ(app->messages().back(), "screenshot: " + shot);
   test::RgbImage img;
   EXPECT_TRUE(test::load_png(shot, &img));
-  // The view's keys: + and - step the UI scale by 0.25 (within its range), D cycles the det
-  // F panel beside / over / hidden, C the colour range fixed / run / frame.
+  // The view's keys: + and - (the characters typed) step the UI scale by 0.25 (within its
+  // range), D cycles the det F panel beside / over / hidden, C the colour range fixed / run /
+  // frame.
   const LiveApp::View v0 = app->view();
-  press(GLFW_KEY_EQUAL);
+  press(GLFW_KEY_EQUAL, false, "=");
   EXPECT_FLOAT_EQ(app->view().ui_scale, std::min(kMaxUiScale, v0.ui_scale + 0.25f));
-  press(GLFW_KEY_MINUS);
-  press(GLFW_KEY_MINUS);
+  press(GLFW_KEY_MINUS, false, "-");
+  press(GLFW_KEY_MINUS, false, "-");
   EXPECT_FLOAT_EQ(app->view().ui_scale, std::max(kMinUiScale, v0.ui_scale - 0.25f));
   EXPECT_EQ(v0.det_f_panel, render::PanelMode::Side);
   for (render::PanelMode m :
@@ -245,10 +247,20 @@ TEST(LiveWindow, KeyboardShortcutsAct) {
     press(GLFW_KEY_C);
     EXPECT_EQ(app->view().color_range, m);
   }
-  press(GLFW_KEY_P);  // plain P: nothing
+  press(GLFW_KEY_P);  // plain P: presentation mode, no screenshot
   EXPECT_FALSE(std::filesystem::exists(o.screenshot_dir + "/invfree_0002.png"));
+  EXPECT_TRUE(app->presenting());
+  press(GLFW_KEY_P);
+  EXPECT_FALSE(app->presenting());
   EXPECT_FALSE(app->should_close());
-  press(GLFW_KEY_ESCAPE);
+  press(GLFW_KEY_ESCAPE);  // the help overlay (F1 above) closes
+  EXPECT_FALSE(app->should_close());
+  press(GLFW_KEY_ESCAPE);  // nothing open: Esc says how to quit, and does not
+  EXPECT_FALSE(app->should_close());
+  EXPECT_NE(app->controller().note.find("Ctrl+Q"), std::string::npos) << app->controller().note;
+  press(GLFW_KEY_Q);
+  EXPECT_FALSE(app->should_close());
+  press(GLFW_KEY_Q, true);
   EXPECT_TRUE(app->should_close());
 }
 
