@@ -45,6 +45,7 @@
 #include "app/render/view_choices.h"
 #include "app/scene_options.h"
 #include "enum_names.h"
+#include "scene_io/scene_file.h"
 #include "simulation.h"
 #include "triangle_fields.h"
 
@@ -54,7 +55,7 @@ namespace {
 
 struct RenderOptions {
   SceneOptions scene;
-  int frames = 300;
+  int frames = 0;  // 0: until nothing moves (auto_frame_limit, settled_frames)
   int steps_per_frame = 0;  // 0: 1, or with a movie the lecture default (lecture_steps_per_frame)
   std::string out = "frames";
   std::string size = "1280x720";
@@ -65,8 +66,12 @@ struct RenderOptions {
   bool force = false;
   int png_level = 1;
   int writer_threads = 1;
-  std::string color_range = "fixed";  // render::parse_color_range_mode
-  std::string camera = "fixed";       // fixed | follow
+  // The defaults are for a projector (docs/rendering.md, "Defaults"): colours scaled to the
+  // run, a camera on the bodies, a mesh fine enough to show a gradient.
+  std::string color_range = "run";  // render::parse_color_range_mode
+  std::string camera = "follow";    // fixed | follow
+  int min_n_seg = 16;               // a square's n_seg raised to this (0: the scene's)
+  std::string paths = "auto";       // the bodies' paths: auto (several bodies), on, off
   std::string color_by = "det-f";     // kTriangleFieldNames (core/triangle_fields.h)
   bool stress_glyphs = false;
   int select_triangle = -1;  // outlined; -1: none
@@ -85,6 +90,16 @@ int lecture_steps_per_frame(double h) {
       std::clamp(std::round(1.0 / (kLectureFps * h)), 1.0, double(kMaxStepsPerFrame)));
 }
 
+// The end of a run without --frames: the movie stops once nothing has moved for
+// kSettledHold seconds of simulated time (so its last still pose is shown that long) -- no
+// node faster than kSettledSpeed body sizes per second over a frame and the ceiling at
+// rest -- or at the limit: 10 s of simulated time, 300 to 1000 frames.
+constexpr double kSettledHold = 0.5, kSettledSpeed = 0.01, kAutoSeconds = 10.0;
+int auto_frame_limit(double h, int steps_per_frame) {
+  return static_cast<int>(
+      std::clamp(std::ceil(kAutoSeconds / (h * steps_per_frame)) + 1.0, 300.0, 1000.0));
+}
+
 std::string frame_name(int i) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "frame_%06d.png", i);
@@ -96,11 +111,13 @@ std::string frame_name(int i) {
 // while this one is drawn and encoded.
 class SimulationThread {
  public:
-  SimulationThread(Simulation& sim, int frames, int steps_per_frame,
+  // frames: the number to make, or with `until_settled` the most (see kSettledHold).
+  SimulationThread(Simulation& sim, int frames, int steps_per_frame, bool until_settled,
                    const render::CaptureOptions& capture)
       : sim_(sim),
         frames_(frames),
         steps_per_frame_(steps_per_frame),
+        until_settled_(until_settled),
         capture_(capture),
         thread_([this] { run(); }) {}
   ~SimulationThread() { stop(); }
@@ -116,6 +133,12 @@ class SimulationThread {
     changed_.notify_all();
     return true;
   }
+  // det F's range over every state the run reached (step 0 and each accepted step, not
+  // only the frames'), as `invfree simulate` reports it; read after stop().
+  double det_lo() const { return det_lo_; }
+  double det_hi() const { return det_hi_; }
+  // With until_settled: the time since when nothing moved (NaN: it still moved at the end).
+  double settled_since() const { return settled_since_; }
   // Stops and joins the thread; returns the failed step's report (status Ok otherwise).
   StepReport stop() {
     {
@@ -130,25 +153,68 @@ class SimulationThread {
  private:
   void run() {
     pthread_setname_np(pthread_self(), "invfree-sim");  // for top and perf
+    measure_det_f();
+    const double size = body_size();
     for (int f = 0; f < frames_; ++f) {
       if (f > 0) {
+        const VecX x_before = sim_.x;
+        const double ceiling_before = sim_.ceiling_nominal, t_before = sim_.time;
         for (int k = 0; k < steps_per_frame_; ++k) {
           if (interrupted() || stopping_) return finish();
           const StepReport r = step(sim_);
           if (r.status != StepStatus::Ok) {
             failure_ = r;
+            // The last good state once more, marked as failed in the picture.
+            render::FrameState state = render::capture_frame_state(sim_, nullptr, capture_);
+            state.failure = "step " + std::to_string(sim_.step_count + 1) + " failed: " +
+                            step_status_name(r.status) + ": " + r.message;
+            push(std::move(state));
             return finish();
           }
+          measure_det_f();
         }
+        const double dt = sim_.time - t_before;
+        const double speed = dt > 0.0 ? max_node_move(x_before, sim_.x) / dt : 0.0;
+        const bool still = speed < kSettledSpeed * size && sim_.ceiling_nominal == ceiling_before;
+        if (!still) settled_since_ = std::numeric_limits<double>::quiet_NaN();
+        else if (std::isnan(settled_since_)) settled_since_ = t_before;
       }
-      render::FrameState state = render::capture_frame_state(sim_, nullptr, capture_);
-      std::unique_lock lock(mutex_);
-      changed_.wait(lock, [&] { return queue_.size() < kCapacity || stopping_; });
-      if (stopping_) break;
-      queue_.push_back(std::move(state));
-      changed_.notify_all();
+      if (!push(render::capture_frame_state(sim_, nullptr, capture_))) break;
+      if (until_settled_ && !std::isnan(settled_since_) &&
+          sim_.time - settled_since_ >= kSettledHold - 1e-9)
+        break;
     }
     finish();
+  }
+  bool push(render::FrameState state) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return queue_.size() < kCapacity || stopping_; });
+    if (stopping_) return false;
+    queue_.push_back(std::move(state));
+    changed_.notify_all();
+    return true;
+  }
+  void measure_det_f() {
+    for (const double d : triangle_det_f(sim_)) {
+      det_lo_ = std::min(det_lo_, d);
+      det_hi_ = std::max(det_hi_, d);
+    }
+  }
+  // The largest extent of the nodes at the start: "still" is relative to it.
+  double body_size() const {
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (Eigen::Index i = 0; i + 1 < sim_.x.size(); i += 2) {
+      lo = lo.cwiseMin(Vec2(sim_.x[i], sim_.x[i + 1]));
+      hi = hi.cwiseMax(Vec2(sim_.x[i], sim_.x[i + 1]));
+    }
+    const double size = sim_.x.size() >= 2 ? (hi - lo).maxCoeff() : 0.0;
+    return size > 0.0 ? size : 1.0;  // (a lone particle: metres)
+  }
+  static double max_node_move(const VecX& a, const VecX& b) {
+    double m = 0.0;
+    for (Eigen::Index i = 0; i + 1 < a.size(); i += 2)
+      m = std::max(m, std::hypot(b[i] - a[i], b[i + 1] - a[i + 1]));
+    return m;
   }
   void finish() {
     std::lock_guard lock(mutex_);
@@ -159,7 +225,10 @@ class SimulationThread {
   static constexpr size_t kCapacity = 2;
   Simulation& sim_;
   const int frames_, steps_per_frame_;
+  const bool until_settled_;
   const render::CaptureOptions capture_;
+  double det_lo_ = std::numeric_limits<double>::infinity(), det_hi_ = -det_lo_;
+  double settled_since_ = std::numeric_limits<double>::quiet_NaN();
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<render::FrameState> queue_;
@@ -206,7 +275,8 @@ class Progress {
 // step's report (status Ok when none failed).
 struct RenderedFrames {
   int frames = 0;
-  double det_lo = 1.0, det_hi = 1.0;
+  double det_lo = 1.0, det_hi = 1.0;  // over every step, not only the frames
+  double settled_since = std::numeric_limits<double>::quiet_NaN();
   StepReport failure;
 };
 
@@ -224,19 +294,34 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
   render::ColorRangeTracker color_range;
   color_range.mode = *render::parse_color_range_mode(opt.color_range);
   render::FollowCamera follow;
+  render::BodyPaths paths;
+  const bool draw_paths =
+      opt.paths == "on" || (opt.paths == "auto" && render::paths_by_default(sim.scene));
+  // The dots: 4% of the bodies' start extent over their count (a body's size, roughly).
+  double path_dot = 0.0;
+  if (draw_paths && sim.x.size() >= 2) {
+    Vec2 lo(sim.x[0], sim.x[1]), hi = lo;
+    for (Eigen::Index i = 0; i + 1 < sim.x.size(); i += 2) {
+      lo = lo.cwiseMin(Vec2(sim.x[i], sim.x[i + 1]));
+      hi = hi.cwiseMax(Vec2(sim.x[i], sim.x[i + 1]));
+    }
+    path_dot = 0.04 * (hi - lo).maxCoeff() / std::max<size_t>(1, sim.mesh.body_begin.size());
+  }
   const render::FrameLayout layout = renderer.layout();
-  Progress progress(opt.frames);
+  const bool until_settled = opt.frames == 0;
+  const int frames =
+      until_settled ? auto_frame_limit(sim.scene.h, opt.steps_per_frame) : opt.frames;
+  Progress progress(frames);
   RenderedFrames out;
-  SimulationThread producer(sim, opt.frames, opt.steps_per_frame, capture);
+  SimulationThread producer(sim, frames, opt.steps_per_frame, until_settled, capture);
   render::FrameState state;
   while (!interrupted() && producer.next(&state)) {
     if (!state.det_f.empty()) {  // (particles only, the course's chapter 0: no det F)
-      const auto [lo, hi] = std::minmax_element(state.det_f.begin(), state.det_f.end());
-      out.det_lo = out.frames == 0 ? *lo : std::min(out.det_lo, *lo);
-      out.det_hi = out.frames == 0 ? *hi : std::max(out.det_hi, *hi);
-      color_range.apply(*lo, *hi, &draw_options);
+      const auto [lo, hi] = render::bulk_det_f_range(state.det_f);
+      color_range.apply(lo, hi, &draw_options);
     }
     color_range.apply_field(state, &draw_options);
+    if (draw_paths) paths.add(&state, path_dot);
     const render::Camera cam = opt.camera == "follow" ? follow.next(state, layout.plot)
                                                       : render::scene_camera(state.scene, layout);
     draw_options.camera = cam;
@@ -251,15 +336,46 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
     progress.update(out.frames, elapsed());
   }
   out.failure = producer.stop();  // joins; the simulation is the caller's again
+  out.det_lo = producer.det_lo();
+  out.det_hi = producer.det_hi();
+  out.settled_since = producer.settled_since();
   if (interrupted()) out.failure = {};  // a signal stopped Newton mid-step: an interruption
   progress.clear();
   return out;
+}
+
+// A projector needs a gradient across the body: a square of the scene's own elasticity
+// meshed coarser than `min_n_seg` (compress's 4 x 4 shows eight flat patches) is meshed
+// at min_n_seg, unless the command line sets mesh.n_seg. Not for the course's mass-spring
+// grids and reduced bases, whose n_seg is part of the chapter, nor for bodies with their
+// own n_seg. Returns the note for the summary ("" when the scene's mesh is kept).
+std::string refine_for_projector(SceneDef& scene, const RenderOptions& opt) {
+  // --select-triangle T names `invfree inspect --triangle T`'s triangle: the scene's mesh.
+  if (opt.min_n_seg <= 0 || scene.n_seg >= opt.min_n_seg || opt.select_triangle >= 0) return "";
+  for (const std::string& o : opt.scene.overrides) {
+    std::string key = o.substr(0, o.find('='));
+    key.erase(std::remove_if(key.begin(), key.end(), [](char c) { return c == ' ' || c == '\t'; }),
+              key.end());
+    if (key == "mesh.n_seg") return "";
+  }
+  if (!scene.has_triangle_elasticity() || scene.reduced_basis != ReducedBasis::Full ||
+      scene.shape.kind != ShapeKind::Square)
+    return "";
+  for (const BodyDef& b : scene.bodies)
+    if (b.n_seg || (b.shape && *b.shape != ShapeKind::Square)) return "";
+  SceneDef finer = scene;
+  const int from = scene.n_seg;
+  if (!apply_override(finer, "mesh.n_seg=" + std::to_string(opt.min_n_seg)).empty()) return "";
+  scene = std::move(finer);
+  return "mesh n_seg " + std::to_string(from) + " -> " + std::to_string(opt.min_n_seg) +
+         " for the picture (--min-n-seg 0 keeps the scene's)";
 }
 
 int run_render(const RenderOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
+  const std::string refined = refine_for_projector(*scene, opt);
   int width = 0, height = 0;
   if (auto e = parse_frame_size(opt.size, &width, &height); !e.empty())
     return fail(exit_code::kBadInput, e);
@@ -331,9 +447,15 @@ int run_render(const RenderOptions& opt) {
   char rate_text[32], encode_text[32];
   std::snprintf(rate_text, sizeof rate_text, "%.4g", fps);
   std::snprintf(encode_text, sizeof encode_text, "%.1f s", seconds - render_seconds);
-  char det_text[64] = "no triangles";
+  // det F as `invfree simulate` gives it: over every state of the run, not only the frames'.
+  char det_text[128] = "no triangles";
+  const auto det = [](double v) { return std::abs(v) < 1e5 ? "%.4f" : "%.4g"; };
   if (sim.mesh.triangle_count() > 0)
-    std::snprintf(det_text, sizeof det_text, "det F in [%.4f, %.4f]", done.det_lo, done.det_hi);
+    std::snprintf(det_text, sizeof det_text,
+                  (std::string("det F in [") + det(done.det_lo) + ", " + det(done.det_hi) +
+                   "] over steps 0..%ld")
+                      .c_str(),
+                  done.det_lo, done.det_hi, sim.step_count);
   std::printf(
       "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, "
       "%s%s\n",
@@ -345,6 +467,18 @@ int run_render(const RenderOptions& opt) {
           : (std::string("; movie: ") + rate_text + " frames/s, " +
              std::to_string(run.steps_per_frame) + " step(s)/frame, encoded in " + encode_text)
                 .c_str());
+  if (!refined.empty()) std::printf("render: %s\n", refined.c_str());
+  if (opt.frames == 0 && done.failure.status == StepStatus::Ok && !interrupted()) {
+    if (!std::isnan(done.settled_since))
+      std::printf("render: ended %.2f s after nothing moved any more (t = %.2f s; no node "
+                  "faster than %.0f%% of the body's size per second, the ceiling at rest); "
+                  "--frames N renders N frames\n",
+                  kSettledHold, done.settled_since, 100.0 * kSettledSpeed);
+    else
+      std::printf("render: stopped at the limit of %d frames (t = %.2f s) while the bodies still "
+                  "moved; --frames N renders N frames\n",
+                  done.frames, sim.time);
+  }
   if (done.failure.status != StepStatus::Ok)
     return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) +
                                            " failed: " + step_status_name(done.failure.status) +
@@ -375,9 +509,24 @@ void register_render_command(CLI::App& app, int& exit_code) {
                                                "state)",
                                                run_render);
   opt.scene.add_to(cmd);
-  cmd->add_option("--frames", opt.frames, "number of frames, the initial state included")
-      ->capture_default_str()
+  cmd->add_option("--frames", opt.frames,
+                  "number of frames, the initial state included (default: until nothing has "
+                  "moved for half a second of simulated time -- no node faster than 1% of the "
+                  "body's size per second, the ceiling at rest -- at most ten seconds of "
+                  "simulated time, 300 to 1000 frames)")
       ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--paths", opt.paths,
+                  "draw each body's path (its centroid at every frame) and where it is now: auto "
+                  "(default: in scenes of several bodies, where it shows what they did to each "
+                  "other, e.g. stack-friction's top square dragging the bottom one), on or off")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "on", "off"}));
+  cmd->add_option("--min-n-seg", opt.min_n_seg,
+                  "mesh a square body of the scene's own elasticity at least this fine for the "
+                  "picture, unless --set mesh.n_seg is given (0: the scene's mesh; the course's "
+                  "mass-spring grids and reduced bases are kept)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4096));
   cmd->add_option("--steps-per-frame", opt.steps_per_frame,
                   "time steps between frames (default 1; with --mp4 or --gif and no --fps, the "
                   "lecture default: the steps that make real-time playback closest to 30 "
@@ -393,8 +542,8 @@ void register_render_command(CLI::App& app, int& exit_code) {
                 "do not draw the triangle edges (they are left out anyway where closer than 6 "
                 "pixels)");
   cmd->add_option("--color-range", opt.color_range,
-                  "det F colour scale: fixed (0.25..4), run (automatic, from the frames so far: "
-                  "only widens) or frame (automatic per frame); automatic ranges are symmetric in "
+                  "det F colour scale: run (default: automatic, from the frames so far: only "
+                  "widens), fixed (0.25..4) or frame (automatic per frame); automatic ranges are symmetric in "
                   "log det F around 1. psi and stress have no fixed scale: frame gives each "
                   "frame its own, fixed and run the widest so far")
       ->capture_default_str()
@@ -419,8 +568,8 @@ void register_render_command(CLI::App& app, int& exit_code) {
       ->type_name("T")
       ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   cmd->add_option("--camera", opt.camera,
-                  "fixed (the scene's whole stage, the same every frame) or follow (frames the "
-                  "bodies, moving smoothly)")
+                  "follow (default: frames the bodies, moving smoothly) or fixed (the scene's "
+                  "whole stage, the same every frame)")
       ->capture_default_str()
       ->check(CLI::IsMember({"fixed", "follow"}));
   cmd->add_flag("--mp4", opt.mp4, "also write DIR/movie.mp4 (H.264, yuv420p) with ffmpeg");

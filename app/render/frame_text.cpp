@@ -45,6 +45,23 @@ const char* model_display_name(Model m) {
   return model_label(m);  // the model's own label (material/models.h)
 }
 
+std::vector<std::string> method_lines(const SceneDef& scene) {
+  switch (scene.integrator) {
+    case Integrator::SymplecticEuler:
+      return {"symplectic Euler", "explicit: no Newton, no filter"};
+    case Integrator::Static:
+    case Integrator::ImplicitEuler: {
+      const char* projection = scene.projection == HessianProjection::Diagonal
+                                   ? "diagonal projection"
+                               : scene.projection == HessianProjection::Full ? "full projection"
+                                                                             : "no projection";
+      return {scene.is_static() ? "static (load steps)" : "implicit Euler",
+              std::string(projection) + (scene.inversion_filter ? ", filter on" : ", filter off")};
+    }
+  }
+  return {};
+}
+
 std::vector<ColorBarTick> color_bar_ticks(double range) {
   std::vector<ColorBarTick> ticks;
   if (range < 2.0) {  // an automatic range (auto_det_f_range): its ends and 1
@@ -56,14 +73,16 @@ std::vector<ColorBarTick> color_bar_ticks(double range) {
     return ticks;
   }
   const int n = static_cast<int>(std::floor(std::log2(range) + 1e-9));
-  const int stride = 2 * n + 1 > 9 ? 2 : 1;
+  // At most nine ticks (a run that reaches det F 0.001 has a range of 1024: 21 powers of
+  // two, whose labels overlapped).
+  const int stride = (2 * n + 1 + 8) / 9;
   for (int k = -n; k <= n; ++k) {
     if (k % stride != 0) continue;
     ColorBarTick t;
     t.value = std::ldexp(1.0, k);
     t.position = det_f_scale_position(t.value, range);
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", t.value);
+    std::snprintf(buf, sizeof buf, "%.3g", t.value);
     t.label = buf;
     ticks.push_back(t);
   }

@@ -212,23 +212,65 @@ void add_ring(Shapes& s, Vec2 c, double radius, double width, Rgba color) {
   }
 }
 
-// A ring around every inverted triangle (det F <= 0), dark under green as in the study's
-// contact sheet: a folded sliver a pixel wide is still found at a glance.
+// The inverted triangles' mark (det F <= 0), over their green fill: each one's own edges
+// as a dark stroke, and a ring, dark under green as in the study's contact sheet, only
+// around one too small to be seen (a folded sliver a pixel wide is still found at a
+// glance), and no ring that would overlap one already drawn: where many triangles invert
+// (linear elasticity squashed) rings around each one hid the body under a tangle of
+// circles, while the outlined green fills show where, and how much, it inverted.
 void add_inverted_rings(Shapes& world, const std::vector<Vec2>& p, const FrameState& state,
                         double s) {
   // Around the centroid, a little larger than the triangle but never a ring that hides
   // the body (a folded sliver can be long).
   const double min_radius = std::max(5.0, 7.0 * s), max_radius = std::max(8.0, 14.0 * s);
+  const double visible_area = 0.5 * min_radius * min_radius;  // pixels^2
+  std::vector<std::pair<Vec2, double>> rings;
   for (size_t t = 0; t < state.triangles.size() && t < state.det_f.size(); ++t) {
     if (state.det_f[t] > 0.0) continue;
     const auto& tri = state.triangles[t];
+    for (int k = 0; k < 3; ++k)
+      add_segment(world, p[tri[k]], p[tri[(k + 1) % 3]], std::max(1.0, 1.4 * s), kOutline);
+    const Vec2 e1 = p[tri[1]] - p[tri[0]], e2 = p[tri[2]] - p[tri[0]];
+    if (0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x()) >= visible_area) continue;
     const Vec2 c = (p[tri[0]] + p[tri[1]] + p[tri[2]]) / 3.0;
     double r = min_radius;
     for (int k = 0; k < 3; ++k) r = std::max(r, (p[tri[k]] - c).norm() + 3.0 * s);
     r = std::min(r, max_radius);
+    bool overlaps = false;
+    for (const auto& [c2, r2] : rings) overlaps = overlaps || (c - c2).norm() < r + r2;
+    if (overlaps) continue;
+    rings.emplace_back(c, r);
     add_ring(world, c, r, std::max(2.0, 3.2 * s), kOutline);
     add_ring(world, c, r, std::max(1.2, 1.8 * s), rgba(kInvertedColor));
   }
+}
+
+// A failed run's last frame: a red border around the world and, at its top, a red banner
+// with the failure in white, cut to the world's width.
+constexpr Rgba kFailureInk{0.80f, 0.04f, 0.06f, 1.0f};
+void add_failure_mark(FrameVertices& res, const FrameLayout& L, const std::string& failure) {
+  const double s = L.scale, x0 = L.plot.x, y0 = L.plot.y, x1 = L.plot.x + L.plot.w,
+               y1 = L.plot.y + L.plot.h;
+  const double border = std::max(3.0, std::round(6.0 * s));
+  add_rect(res.shapes, x0, y0, x1, y0 + border, kFailureInk);
+  add_rect(res.shapes, x0, y1 - border, x1, y1, kFailureInk);
+  add_rect(res.shapes, x0, y0, x0 + border, y1, kFailureInk);
+  add_rect(res.shapes, x1 - border, y0, x1, y1, kFailureInk);
+  const double body = res.font_sizes[kBody];
+  const double banner = std::round(1.9 * body);
+  add_rect(res.shapes, x0, y0, x1, y0 + banner, kFailureInk);
+  const double pad = std::round(14.0 * s), room = (x1 - x0) - 2.0 * pad;
+  std::string text = "RUN FAILED: " + failure;
+  if (res.atlas->text_width(text, kBody) > room) {
+    while (text.size() > 12 && res.atlas->text_width(text + "…", kBody) > room) {
+      while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80)
+        text.pop_back();  // a whole UTF-8 character: its continuation bytes, then its lead
+      text.pop_back();
+    }
+    text += "…";
+  }
+  res.add_text(text, kBody, x0 + pad, y0 + 0.5 * banner + 0.36 * body,
+               Rgba{1.0f, 1.0f, 1.0f, 1.0f});
 }
 
 // A filled disk antialiased as the strokes are: a fan of wedges whose `across` runs from 0
@@ -527,9 +569,40 @@ size_t draw_panel(FrameVertices& res, const FrameLayout& L, const FrameState& st
   } else {
     res.add_text(model_display_name(scene.model), kBody, x0, y, kMutedInk);
     y += 1.3 * body;
-    res.add_text("μ = " + format_si(scene.lame.mu, "Pa"), kBody, x0, y, kMutedInk);
+    // A body with its own material: the scene's μ and λ may be used by none, so each
+    // body's (up to three; more say only that they differ).
+    const int bodies = body_count(scene);
+    bool per_body = false;
+    for (const BodyDef& b : scene.bodies) per_body = per_body || b.lame.has_value();
+    if (!per_body) {
+      res.add_text("μ = " + format_si(scene.lame.mu, "Pa"), kBody, x0, y, kMutedInk);
+      y += 1.3 * body;
+      res.add_text("λ = " + format_si(scene.lame.lambda, "Pa"), kBody, x0, y, kMutedInk);
+    } else if (bodies <= 3) {
+      for (int k = 0; k < bodies; ++k) {
+        const Lame lame = placed_body(scene, k).lame;
+        res.add_text("body " + std::to_string(k + 1) + ": μ " + format_si(lame.mu, "Pa") + ", λ " +
+                         format_si(lame.lambda, "Pa"),
+                     kSmall, x0, y, kMutedInk);
+        if (k + 1 < bodies) y += 1.25 * small;
+      }
+    } else {
+      res.add_text("μ, λ: per body (" + std::to_string(bodies) + " bodies)", kBody, x0, y,
+                   kMutedInk);
+    }
+  }
+  if (!lone_particles) {  // which of the lecture's methods steps it
+    for (const std::string& line : method_lines(scene)) {
+      y += 1.3 * body;
+      res.add_text(line, kSmall, x0, y, kMutedInk);
+    }
+  }
+  if (body_count(scene) > 1 && scene.self_contact_on()) {  // what acts between the bodies
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "between bodies: friction μ = %.2g", scene.self_friction);
     y += 1.3 * body;
-    res.add_text("λ = " + format_si(scene.lame.lambda, "Pa"), kBody, x0, y, kMutedInk);
+    res.add_text(scene.self_friction > 0.0 ? buf : "between bodies: no friction", kSmall, x0, y,
+                 kMutedInk);
   }
   y += 2.0 * body;
   res.add_text(format_time(state.time, scene.h), kBody, x0, y, kInk);
@@ -676,6 +749,7 @@ ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, cons
   if (options.stress_glyphs) add_stress_glyphs(v, p, state, L);
   add_overlays(v.shapes, state, cam, L.scale);
   add_selected_outline(v.shapes, p, state, options.selected_triangle, L.scale);
+  if (!state.failure.empty()) add_failure_mark(v, L, state.failure);
   ranges.world_end = v.shapes.size();
   const DetFSummary det = summarize_det_f(state);
   ranges.panel_backdrop = options.panel ? draw_panel(v, L, state, det.lo, det.hi, det.inverted,

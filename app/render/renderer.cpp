@@ -374,6 +374,7 @@ FrameState capture_frame_state(const Simulation& sim, const std::vector<double>*
   }
   if (const auto anchors = affine_anchor_triangle(sim.scene, sim.mesh, sim.x))
     f.overlays.push_back(anchor_overlay(*anchors, mesh_spacing(sim.mesh)));
+  f.body_begin = sim.mesh.body_begin;
   f.ceiling_y = sim.ceiling_y;
   f.time = sim.time;
   f.step = sim.step_count;

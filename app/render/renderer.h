@@ -17,7 +17,9 @@
 //    them as strokes, one colour each: a mesh without triangles' particles and springs
 //    (the course's chapter 0), the affine basis's anchor triangle (chapter 9);
 //  - optionally a cross of principal stress strokes per triangle (or per cell of a fine
-//    mesh) and a thick outline around one selected triangle.
+//    mesh) and a thick outline around one selected triangle;
+//  - a failed run's last frame (FrameState::failure): a red border around the world and
+//    a red banner with the failure at its top.
 // A frame with no triangles (particles only) says so on the panel in place of det F and
 // has no colour bar.
 // Nothing depends on the wall clock, so the same state gives the same picture.
@@ -77,6 +79,8 @@ constexpr double kMinOverlayDotPixels = 2.5;
 // The overlay colours: the tutorial's blue particles and springs, its red anchor triangle.
 constexpr Rgb kParticleColor{0.05f, 0.22f, 0.85f};
 constexpr Rgb kAnchorColor{0.86f, 0.06f, 0.06f};
+// The bodies' paths (BodyPaths, view_choices.h): dark, apart from the det F colours.
+constexpr Rgb kPathColors[] = {{0.30f, 0.05f, 0.45f}, {0.75f, 0.35f, 0.0f}, {0.0f, 0.40f, 0.30f}};
 
 // What one frame shows, copied out of a Simulation (so a frame can be drawn while the
 // simulation goes on, e.g. on another thread).
@@ -84,7 +88,8 @@ struct FrameState {
   SceneDef scene;
   VecX x;  // 2N node positions
   std::vector<std::array<int, 3>> triangles;
-  std::vector<double> det_f;  // per triangle
+  std::vector<int> body_begin{0};  // each body's first node (Mesh::body_begin)
+  std::vector<double> det_f;       // per triangle
   // What the triangles are coloured by (core/triangle_fields.h) and its value per triangle
   // (det F: the same as det_f).
   TriangleField color_by = TriangleField::DetF;
@@ -97,6 +102,10 @@ struct FrameState {
   double ceiling_y = 0.0;
   double time = 0.0;
   long step = 0;
+  // Set when the run failed after this state (the last good one): "step 33 failed:
+  // penetrated: ...". The frame is then marked in the picture (a red border and banner),
+  // so a failed run's last frame does not look like a normal one.
+  std::string failure;
 };
 
 // What a capture computes besides det F.

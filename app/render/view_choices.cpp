@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "app/body_extent.h"
 #include "app/colormap.h"
@@ -114,6 +115,59 @@ Camera FollowCamera::next(const FrameState& state, const PixelRect& plot) {
   }
   last = c;
   return c;
+}
+
+std::pair<double, double> bulk_det_f_range(const std::vector<double>& det_f) {
+  std::vector<double> d;  // the positive ones: inverted triangles are green on any scale
+  for (const double v : det_f)
+    if (v > 0.0) d.push_back(v);
+  if (d.empty()) return {1.0, 1.0};
+  const auto at = [&](double q) {
+    const size_t k = std::min(d.size() - 1, static_cast<size_t>(q * (d.size() - 1) + 0.5));
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(k), d.end());
+    return d[k];
+  };
+  const double lo = at(0.03), hi = at(0.97);
+  return {lo, hi};
+}
+
+std::vector<Vec2> BodyPaths::centroids(const FrameState& state) {
+  const int nodes = static_cast<int>(state.x.size() / 2);
+  std::vector<Vec2> out;
+  for (size_t b = 0; b < state.body_begin.size(); ++b) {
+    const int begin = state.body_begin[b];
+    const int end = b + 1 < state.body_begin.size() ? state.body_begin[b + 1] : nodes;
+    if (end <= begin || begin < 0 || end > nodes) continue;
+    Vec2 sum = Vec2::Zero();
+    for (int i = begin; i < end; ++i) sum += Vec2(state.x[2 * i], state.x[2 * i + 1]);
+    out.push_back(sum / (end - begin));
+  }
+  return out;
+}
+
+void BodyPaths::add(FrameState* state, double dot_radius) {
+  const std::vector<Vec2> now = centroids(*state);
+  if (paths.size() != now.size()) paths.assign(now.size(), {});
+  for (size_t b = 0; b < now.size(); ++b) {
+    paths[b].push_back(now[b]);
+    const Rgb color = kPathColors[b % std::size(kPathColors)];
+    Overlay path;
+    path.points = paths[b];
+    for (int k = 0; k + 1 < static_cast<int>(path.points.size()); ++k)
+      path.segments.push_back({k, k + 1});
+    path.color = color;
+    path.stroke_width = 2.5;
+    state->overlays.push_back(std::move(path));
+    Overlay dot;  // where the body is now
+    dot.points = {now[b]};
+    dot.color = color;
+    dot.dot_radius = dot_radius;
+    state->overlays.push_back(std::move(dot));
+  }
+}
+
+bool paths_by_default(const SceneDef& scene) {
+  return body_count(scene) > 1;
 }
 
 }  // namespace invfree::render

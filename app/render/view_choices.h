@@ -30,6 +30,13 @@ enum class ColorRangeMode { Fixed, Run, Frame };
 std::optional<ColorRangeMode> parse_color_range_mode(const std::string& name);
 const char* color_range_mode_name(ColorRangeMode mode);
 
+// The det F range the automatic colour scale is chosen from: the 3rd and 97th percentiles of
+// the frame's positive det F, not its extremes. A few corner triangles of a squeezed square reach
+// det F 0.39 while its bulk stays near 0.85; a scale to the extremes (0.25..4) paints the
+// bulk the pale tint of a fixed scale, one to the bulk colours it clearly and saturates
+// the corners (the panel's markers still give the true min and max).
+std::pair<double, double> bulk_det_f_range(const std::vector<double>& det_f);
+
 struct ColorRangeTracker {
   ColorRangeMode mode = ColorRangeMode::Fixed;
   double run_lo = 1.0, run_hi = 1.0;  // det F extremes seen so far (positive ones)
@@ -48,6 +55,23 @@ struct ColorRangeTracker {
   bool field_seen = false;  // the field extremes below hold a frame's
   FieldStats run_field{};   // the field's extremes over the frames so far
 };
+
+// Where each body has been: its centroid (the mean of its nodes) at every frame so far,
+// drawn as a path with a dot at the current centroid (two overlays per body). In a scene
+// of several bodies it shows what they did to each other: in `stack-friction` the top
+// square drags the bottom one along as it slides off (the bottom's path runs 0.5 m to the
+// left), in the frictionless `stack` it leaves it where it was (a dot) -- the two end
+// frames look alike without it (the course's chapter 8). On by default where a scene has
+// several bodies (`invfree render --paths`).
+struct BodyPaths {
+  std::vector<std::vector<Vec2>> paths;  // per body, one point per frame added
+  // Records the frame's centroids and appends the paths' overlays to state->overlays.
+  void add(FrameState* state, double dot_radius);
+  void reset() { paths.clear(); }
+  // Each body's centroid (the mean of its nodes' positions).
+  static std::vector<Vec2> centroids(const FrameState& state);
+};
+bool paths_by_default(const SceneDef& scene);
 
 // A camera that keeps the bodies framed over a movie: each frame it moves a fraction of
 // the way toward the bodies' padded bounding box (so it never jumps), and never less than

@@ -44,7 +44,11 @@ std::vector<std::string> files_in(const std::string& dir) {
 
 TEST(RenderCli, WritesFramesAndFrameZeroIsTheInitialState) {
   const std::string dir = fresh_dir("frames");
-  const CommandResult r = run("render --scene compress --frames 3 --size 960x540 --out " + dir);
+  // The golden's picture: the scene's own mesh, the fixed camera and colour scale.
+  const CommandResult r =
+      run("render --scene compress --frames 3 --size 960x540 --min-n-seg 0 --camera fixed "
+          "--color-range fixed --out " +
+          dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");  // no progress when stderr is not a terminal
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
@@ -220,13 +224,109 @@ TEST(RenderCli, LectureDefaultPlaysInRealTimeNearThirtyFramesAndGifToo) {
   EXPECT_NE(r1.out.find("movie: 100 frames/s, 1 step(s)/frame"), std::string::npos) << r1.out;
 }
 
-TEST(RenderCli, FailedStepKeepsTheFramesBeforeItAndExitsThree) {
+// Pixels of the failure mark's red (frame_vertices.cpp's kFailureInk, 0.80 0.04 0.06).
+long failure_red_pixels(const invfree::test::RgbImage& image) {
+  long n = 0;
+  for (size_t i = 0; i + 2 < image.rgb.size(); i += 3)
+    n += std::abs(image.rgb[i] - 204) <= 3 && image.rgb[i + 1] <= 14 && image.rgb[i + 2] <= 19;
+  return n;
+}
+
+TEST(RenderCli, FailedStepKeepsTheFramesBeforeItAndMarksTheLastOne) {
   const std::string dir = fresh_dir("fail");
   const CommandResult r = run(
       "render --frames 5 --size 320x180 --set time.max_newton=1 --set time.tol=1e-14 --out " + dir);
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("step 1 failed"), std::string::npos) << r.err;
-  EXPECT_EQ(files_in(dir), std::vector<std::string>{"frame_000000.png"});
+  // Frame 0, then the same (last good) state once more, marked as failed.
+  ASSERT_EQ(files_in(dir), (std::vector<std::string>{"frame_000000.png", "frame_000001.png"}));
+  invfree::test::RgbImage good, failed;
+  ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000000.png", &good));
+  ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000001.png", &failed));
+  EXPECT_EQ(failure_red_pixels(good), 0);
+  // The border (at least 3 px on four sides of a ~200 x 180 world) and the banner.
+  EXPECT_GT(failure_red_pixels(failed), 3 * (2 * 180 + 2 * 150));
+}
+
+// Issue 32 item 12: render and simulate give det F one meaning, over every step of the
+// run (render saw only the frames' states: every third step here).
+TEST(RenderCli, DetFRangeIsOverEveryStepAsSimulateGivesIt) {
+  const std::string dir = fresh_dir("detf");
+  const CommandResult r =
+      run("render --frames 31 --steps-per-frame 3 --size 160x90 --min-n-seg 0 "
+          "--set material.model=linear --set material.E=1e4 --set mesh.n_seg=8 "
+          "--set initial.velocity=[0,-8] --out " +
+          dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const CommandResult sim =
+      run("simulate --steps 90 --set material.model=linear --set material.E=1e4 --set mesh.n_seg=8 "
+          "--set initial.velocity=[0,-8]");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  const size_t at = sim.out.find("det F in [");
+  ASSERT_NE(at, std::string::npos) << sim.out;
+  const std::string range = sim.out.substr(at, sim.out.find('\n', at) - at);
+  EXPECT_NE(range.find("over steps 0..90"), std::string::npos) << range;
+  EXPECT_NE(r.out.find(range), std::string::npos) << r.out << "\nsimulate: " << range;
+}
+
+// The share of the plot's pixels (the left `plot_fraction` of the frame) whose colour is
+// clearly a colour (max - min channel > 60): the det F fills, not the grey stage, the white
+// body at det F = 1 or the pale tints of a fixed 0.25..4 scale.
+double colored_share(const invfree::test::RgbImage& image, double plot_fraction) {
+  long colored = 0, all = 0;
+  const int w = static_cast<int>(plot_fraction * image.width);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < w; ++x, ++all) {
+      const std::uint8_t* p = &image.rgb[3 * (static_cast<size_t>(y) * image.width + x)];
+      colored += std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 60;
+    }
+  return double(colored) / all;
+}
+
+// Issue 32 item 4: the default picture carries to the back of a lecture room. At t = 2 s
+// (the squeeze) the default render of the default scene is clearly coloured over a good
+// part of the world (the fixed scale left it pale: no pixel clearly coloured; the whole
+// stage left 60% of it empty).
+TEST(RenderCli, DefaultPictureIsColouredAndOnTheBody) {
+  const std::string dir = fresh_dir("projector");
+  const CommandResult r = run("render --frames 201 --size 320x180 --out " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("mesh n_seg 4 -> 16"), std::string::npos) << r.out;
+  invfree::test::RgbImage squeeze;
+  ASSERT_TRUE(invfree::test::load_png(dir + "/frame_000200.png", &squeeze));
+  EXPECT_GT(colored_share(squeeze, 0.6), 0.08);  // measured 0.11 (the old default: 0)
+  const std::string fixed_dir = fresh_dir("projector_fixed");
+  ASSERT_EQ(run("render --frames 201 --size 320x180 --color-range fixed --camera fixed "
+                "--min-n-seg 0 --out " +
+                fixed_dir)
+                .code,
+            0);
+  invfree::test::RgbImage before;
+  ASSERT_TRUE(invfree::test::load_png(fixed_dir + "/frame_000200.png", &before));
+  EXPECT_LT(colored_share(before, 0.6), 0.01);  // the old default, for contrast (measured 0)
+}
+
+// Issue 32 item 4: without --frames the movie ends when nothing moves any more (compress:
+// the ceiling stops at t = 2.6 s), and says so; it used to run 300 frames whatever
+// happened, 70% of a 9-s movie static.
+TEST(RenderCli, DefaultRunEndsWhenNothingMovesAndSaysSo) {
+  const std::string dir = fresh_dir("settled");
+  const CommandResult r =
+      run("render --size 160x90 --min-n-seg 0 --steps-per-frame 3 --out " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const size_t at = r.out.find("render: ended 0.50 s after nothing moved any more (t = ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double settled = std::stod(r.out.substr(r.out.find("(t = ", at) + 5));
+  EXPECT_GE(settled, 2.6);  // not before the ceiling stopped
+  EXPECT_LT(settled, 6.0);
+  const size_t frames = files_in(dir).size();
+  EXPECT_NEAR(double(frames - 1) * 0.03, settled + 0.5, 0.031) << r.out;
+  // A scene that never comes to rest stops at the limit and says why.
+  const std::string fall = fresh_dir("falling");
+  const CommandResult f = run("render --size 160x90 --scene course-0-free-fall --out " + fall);
+  ASSERT_EQ(f.code, 0) << f.err;
+  EXPECT_NE(f.out.find("render: stopped at the limit of"), std::string::npos) << f.out;
+  EXPECT_NE(f.out.find("still moved"), std::string::npos) << f.out;
 }
 
 }  // namespace

@@ -126,6 +126,30 @@ TEST(RenderGolden, CompressMaximumCompression) {
   EXPECT_LE(at_step, smallest * 1.005);
 }
 
+// Issue 32 item 7: a failed run's last frame is marked in the picture. Symplectic Euler on
+// compress penetrates the ground (the quickstart's third demonstration); the last good
+// state is drawn with the failure, a red border and banner.
+TEST(RenderGolden, CompressFailedRunIsMarked) {
+  Simulation sim = make_simulation(scene("compress", {"solver.integrator=symplectic-euler"}));
+  StepReport failure;
+  while (sim.step_count < 300) {
+    failure = step(sim);
+    if (failure.status != StepStatus::Ok) break;
+  }
+  ASSERT_NE(failure.status, StepStatus::Ok) << "symplectic Euler did not fail";
+  render::FrameState state = render::capture_frame_state(sim);
+  state.failure = "step " + std::to_string(sim.step_count + 1) +
+                  " failed: " + step_status_name(failure.status) + ": " + failure.message;
+  render::Renderer& r = renderer();
+  r.draw(state);
+  std::vector<std::uint8_t> rgba;
+  r.read_pixels(&rgba);
+  const std::string message =
+      test::check_golden(test::from_gl_pixels(rgba, r.width(), r.height()), "compress_failed",
+                         ::invfree::test::golden_dir(), ::invfree::test::golden_failure_dir());
+  EXPECT_TRUE(message.empty()) << message;
+}
+
 TEST(RenderGolden, DropAtRest) {
   constexpr long kStep = 400;
   Simulation sim = make_simulation(scene("drop"));

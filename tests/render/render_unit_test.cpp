@@ -2,6 +2,7 @@
 // bar's ticks, the fixed camera, UTF-8 decoding, the frame writer's PNG encoding.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "app/body_extent.h"
@@ -34,6 +35,13 @@ TEST(ColorRange, AutoRangeIsTheSmallestRoundRangeHoldingTheData) {
       EXPECT_LE(1.0 / r, lo * (1 + 1e-12));
       EXPECT_GE(r, hi * (1 - 1e-12));
     }
+  // A run that reaches det F 0.001 (range 1024): at most nine ticks, short labels (21
+  // overlapping ones, "0.000976562" the longest, before).
+  const auto wide = color_bar_ticks(1024.0);
+  EXPECT_LE(wide.size(), 9u);
+  EXPECT_TRUE(
+      std::any_of(wide.begin(), wide.end(), [](const ColorBarTick& t) { return t.value == 1.0; }));
+  for (const auto& t : wide) EXPECT_LE(t.label.size(), 7u) << t.label;  // "0.00195"
   // A small range's bar: its ends and 1, labelled.
   const auto ticks = color_bar_ticks(1.05);
   ASSERT_EQ(ticks.size(), 3u);
