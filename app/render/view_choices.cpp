@@ -127,7 +127,7 @@ std::pair<double, double> bulk_det_f_range(const std::vector<double>& det_f) {
     std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(k), d.end());
     return d[k];
   };
-  const double lo = at(0.03), hi = at(0.97);
+  const double lo = at(0.10), hi = at(0.90);
   return {lo, hi};
 }
 

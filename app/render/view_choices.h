@@ -30,11 +30,12 @@ enum class ColorRangeMode { Fixed, Run, Frame };
 std::optional<ColorRangeMode> parse_color_range_mode(const std::string& name);
 const char* color_range_mode_name(ColorRangeMode mode);
 
-// The det F range the automatic colour scale is chosen from: the 3rd and 97th percentiles of
-// the frame's positive det F, not its extremes. A few corner triangles of a squeezed square reach
-// det F 0.39 while its bulk stays near 0.85; a scale to the extremes (0.25..4) paints the
-// bulk the pale tint of a fixed scale, one to the bulk colours it clearly and saturates
-// the corners (the panel's markers still give the true min and max).
+// The det F range `invfree render`'s automatic colour scale is chosen from: the 10th and
+// 90th percentiles of the frame's positive det F, not its extremes. The corner triangles of
+// a squeezed square reach det F 0.39 while its bulk stays at 0.6-0.9; a scale to the
+// extremes (0.25..4) paints the bulk the pale tint of the fixed scale, one to the bulk
+// colours it clearly and saturates the most compressed tenth, deep blue (the panel's
+// markers still give the true min and max).
 std::pair<double, double> bulk_det_f_range(const std::vector<double>& det_f);
 
 struct ColorRangeTracker {
