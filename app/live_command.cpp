@@ -178,6 +178,8 @@ void register_live_command(CLI::App& app, int& exit_code) {
                 "print frames per second (with the simulation running) at the end");
   cmd->add_flag("--paused", opt.live.paused, "start paused");
   cmd->add_flag("--no-panel", opt.live.hide_panel, "start with the panel hidden (Tab shows it)");
+  cmd->add_flag("--presentation", opt.live.presentation,
+                "start in presentation mode: full screen, no panel, large readouts (P leaves)");
   cmd->add_option("--size", opt.size, "window size")->capture_default_str()->type_name("WxH");
   cmd->add_option("--steps-per-frame", opt.live.steps_per_frame, "time steps per displayed frame")
       ->capture_default_str()

@@ -527,6 +527,7 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   a.panel.max_segments = options.max_segments;
   a.view.set_size(a.renderer->width(), a.renderer->height());
   a.view.fit(*a.controller, a.visible_rect());
+  if (options.presentation) a.set_presenting(true);
   if (!options.record_dir.empty()) {
     const std::string dir = options.record_dir;
     a.options.record_dir.clear();

@@ -54,6 +54,7 @@ struct LiveOptions {
   bool bench = false;                // print frames/s at the end
   bool paused = false;               // start paused
   bool hide_panel = false;           // start with the panel hidden (Tab shows it)
+  bool presentation = false;         // start in presentation mode (P leaves it)
   // Touch controls (the web page): a button opens and closes the panel, which starts closed
   // where it would leave the picture a strip (app/live/panel_layout.h).
   bool touch_controls = false;
