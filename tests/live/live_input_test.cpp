@@ -362,8 +362,11 @@ TEST(LiveInput, TheEnergyPlotDrawsTheTotal) {
   // Whitish pixels: none of the four energies' colours (orange, blue, green, red) nor the
   // plot's blue-grey ground has all three channels above 170.
   long white = 0;
-  for (int y = static_cast<int>(r.y0); y < static_cast<int>(r.y1); ++y)
-    for (int x = static_cast<int>(r.x0); x < static_cast<int>(r.x1); ++x) {
+  // (the panel scrolls: the plot may reach below the window's edge)
+  for (int y = std::max(0, static_cast<int>(r.y0));
+       y < std::min(img.height, static_cast<int>(r.y1)); ++y)
+    for (int x = std::max(0, static_cast<int>(r.x0));
+         x < std::min(img.width, static_cast<int>(r.x1)); ++x) {
       const size_t i = 4 * (static_cast<size_t>(y) * img.width + x);
       white += std::min({img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]}) > 170;
     }
