@@ -3,7 +3,9 @@
 // line. Without "%%" the whole input is also tried as one assignment, so every seed
 // exercises both entry points. Besides "no crash, no sanitizer report", it checks the
 // contracts the tools rely on, and aborts (a finding) when one breaks:
-//   - an error is one non-empty line, starting with the source name (files) or "--set ";
+//   - an override's error is one non-empty line starting with "--set "; a file's error is
+//     one non-empty line per independent mistake (all are reported at once), each starting
+//     with the file's name;
 //   - a loaded scene passes validate_scene and survives scene_to_toml -> parse unchanged;
 //   - a rejected override leaves the scene untouched, an accepted one leaves it valid.
 // Built two ways: with clang -fsanitize=fuzzer (the fuzzer), and as a plain program that
@@ -11,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <string_view>
@@ -27,12 +30,18 @@ void require(bool ok, const char* what, const std::string& detail) {
   std::abort();
 }
 
-void check_error(const std::string& error, std::string_view prefix) {
+void check_error(const std::string& error, std::string_view prefix, bool one_line) {
   require(!error.empty(), "empty error", "");
-  require(error.find('\n') == std::string::npos && error.find('\r') == std::string::npos,
-          "error is not one line", error);
-  require(error.compare(0, prefix.size(), prefix) == 0, "error does not start with its source",
-          error);
+  require(error.find('\r') == std::string::npos, "error has a carriage return", error);
+  require(!one_line || error.find('\n') == std::string::npos, "error is not one line", error);
+  for (size_t start = 0; start <= error.size();) {
+    const size_t end = std::min(error.find('\n', start), error.size());
+    const std::string_view line = std::string_view(error).substr(start, end - start);
+    require(!line.empty(), "error has an empty line", error);
+    require(line.substr(0, prefix.size()) == prefix, "error line does not start with its source",
+            error);
+    start = end + 1;
+  }
 }
 
 void check_scene(const invfree::SceneDef& scene) {
@@ -51,7 +60,7 @@ void check_override(const invfree::SceneDef& base, std::string_view assignment) 
     require(invfree::validate_scene(scene).empty(), "accepted override leaves an invalid scene",
             std::string(assignment));
   } else {
-    check_error(error, "--set ");
+    check_error(error, "--set ", true);
     require(scene == base, "rejected override changed the scene", std::string(assignment));
   }
 }
@@ -69,7 +78,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check_scene(*load.scene);
     base = *load.scene;
   } else {
-    check_error(load.error, "fuzz.toml");
+    check_error(load.error, "fuzz.toml", false);
   }
 
   if (split == std::string_view::npos) {
