@@ -16,6 +16,9 @@
 // fall with no ground) leaves the picture.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "scene/scene.h"
 #include "types.h"
 
@@ -44,6 +47,17 @@ FrameLayout frame_layout(int width, int height, PanelMode panel = PanelMode::Sid
                          double text_scale = 1.0);
 inline FrameLayout frame_layout(int width, int height, bool panel) {
   return frame_layout(width, height, panel ? PanelMode::Side : PanelMode::Hidden);
+}
+
+// A titled view (DrawOptions::title: `invfree render --compare`'s two views) has a heading
+// band across the plot's top, kept clear of the world: its height in pixels, and the plot
+// area below it, where the camera frames the bodies.
+inline double title_band_height(const FrameLayout& L) {
+  return std::max(34.0, std::round(62.0 * L.scale));
+}
+inline PixelRect below_title(const FrameLayout& L) {
+  const double band = title_band_height(L);
+  return {L.plot.x, L.plot.y + band, L.plot.w, L.plot.h - band};
 }
 
 struct WorldBox {

@@ -248,7 +248,37 @@ void add_inverted_rings(Shapes& world, const std::vector<Vec2>& p, const FrameSt
 // A failed run's last frame: a red border around the world and, at its top, a red banner
 // with the failure in white, cut to the world's width.
 constexpr Rgba kFailureInk{0.80f, 0.04f, 0.06f, 1.0f};
-void add_failure_mark(FrameVertices& res, const FrameLayout& L, const std::string& failure) {
+// `text` cut with an ellipsis to `room` pixels at font `size` (whole UTF-8 characters).
+std::string fit_text(const FrameVertices& res, std::string text, int size, double room) {
+  if (res.atlas->text_width(text, size) <= room) return text;
+  while (text.size() > 12 && res.atlas->text_width(text + "…", size) > room) {
+    while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80)
+      text.pop_back();  // a whole UTF-8 character: its continuation bytes, then its lead
+    text.pop_back();
+  }
+  return text + "…";
+}
+
+// A titled view's heading (DrawOptions::title): a light band across the plot's top with a
+// thin rule under it, the first line in the body font, the others small.
+constexpr Rgba kTitleBand{1.0f, 1.0f, 1.0f, 0.94f};
+void add_title(FrameVertices& res, const FrameLayout& L, const std::vector<std::string>& title) {
+  const double s = L.scale, x0 = L.plot.x, y0 = L.plot.y, x1 = L.plot.x + L.plot.w;
+  const double band = title_band_height(L);
+  add_rect(res.shapes, x0, y0, x1, y0 + band, kTitleBand);
+  add_rect(res.shapes, x0, y0 + band - std::max(1.0, std::round(1.5 * s)), x1, y0 + band,
+           kMutedInk);
+  const double pad = std::round(14.0 * s), room = (x1 - x0) - 2.0 * pad;
+  for (size_t k = 0; k < title.size() && k < 2; ++k) {
+    const int size = k == 0 ? kBody : kSmall;
+    res.add_text(fit_text(res, title[k], size, room), size, x0 + pad,
+                 y0 + (k == 0 ? 0.42 : 0.82) * band, k == 0 ? kInk : kMutedInk);
+  }
+}
+
+// top: the heading band's height above the banner (0: none).
+void add_failure_mark(FrameVertices& res, const FrameLayout& L, const std::string& failure,
+                      double top) {
   const double s = L.scale, x0 = L.plot.x, y0 = L.plot.y, x1 = L.plot.x + L.plot.w,
                y1 = L.plot.y + L.plot.h;
   const double border = std::max(3.0, std::round(6.0 * s));
@@ -258,19 +288,10 @@ void add_failure_mark(FrameVertices& res, const FrameLayout& L, const std::strin
   add_rect(res.shapes, x1 - border, y0, x1, y1, kFailureInk);
   const double body = res.font_sizes[kBody];
   const double banner = std::round(1.9 * body);
-  add_rect(res.shapes, x0, y0, x1, y0 + banner, kFailureInk);
+  add_rect(res.shapes, x0, y0 + top, x1, y0 + top + banner, kFailureInk);
   const double pad = std::round(14.0 * s), room = (x1 - x0) - 2.0 * pad;
-  std::string text = "RUN FAILED: " + failure;
-  if (res.atlas->text_width(text, kBody) > room) {
-    while (text.size() > 12 && res.atlas->text_width(text + "…", kBody) > room) {
-      while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80)
-        text.pop_back();  // a whole UTF-8 character: its continuation bytes, then its lead
-      text.pop_back();
-    }
-    text += "…";
-  }
-  res.add_text(text, kBody, x0 + pad, y0 + 0.5 * banner + 0.36 * body,
-               Rgba{1.0f, 1.0f, 1.0f, 1.0f});
+  res.add_text(fit_text(res, "RUN FAILED: " + failure, kBody, room), kBody, x0 + pad,
+               y0 + top + 0.5 * banner + 0.36 * body, Rgba{1.0f, 1.0f, 1.0f, 1.0f});
 }
 
 // A filled disk antialiased as the strokes are: a fan of wedges whose `across` runs from 0
@@ -749,7 +770,9 @@ ShapeRanges build_frame_vertices(FrameVertices& v, const FrameState& state, cons
   if (options.stress_glyphs) add_stress_glyphs(v, p, state, L);
   add_overlays(v.shapes, state, cam, L.scale);
   add_selected_outline(v.shapes, p, state, options.selected_triangle, L.scale);
-  if (!state.failure.empty()) add_failure_mark(v, L, state.failure);
+  if (!options.title.empty()) add_title(v, L, options.title);
+  if (!state.failure.empty())
+    add_failure_mark(v, L, state.failure, options.title.empty() ? 0.0 : title_band_height(L));
   ranges.world_end = v.shapes.size();
   const DetFSummary det = summarize_det_f(state);
   ranges.panel_backdrop = options.panel ? draw_panel(v, L, state, det.lo, det.hi, det.inverted,

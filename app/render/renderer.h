@@ -154,6 +154,10 @@ struct DrawOptions {
   // state captured with CaptureOptions::stress_glyphs). Where triangles are smaller than
   // kGlyphCellPixels (frame_vertices.h) one glyph per cell of that size is drawn.
   bool stress_glyphs = false;
+  // A heading across the world's top, on a light band of title_band_height (camera.h): the
+  // first line in the body font (a side-by-side view's method), the others small (what it
+  // is), each cut to the plot's width; a failed run's banner goes below it. Empty: none.
+  std::vector<std::string> title;
   // Replaces the scene's fixed camera (a live view's pan and zoom); pixels of this frame.
   std::optional<Camera> camera;
   // Where the frame goes: the renderer's own framebuffer (read_pixels) by default, or this

@@ -115,6 +115,32 @@ TEST(FrameMarks, AFailedStateIsMarkedInThePicture) {
   }
 }
 
+TEST(FrameMarks, ATitledViewHasItsHeadingAboveAFailureBanner) {
+  // render --compare's views: the method and what it is over the world's top, and a failed
+  // side's banner below them (not over them).
+  FrameState state = state_of(builtin("compress"));
+  DrawOptions titled;
+  titled.title = {"no-projection", "no projection (plain Newton) + inversion filter"};
+  EXPECT_FALSE(has(build(state).words, "no-projection"));
+  const FrameVertices plain = build(state, titled);
+  EXPECT_TRUE(has(plain.words, "no-projection"));
+  EXPECT_TRUE(has(plain.words, "no projection (plain Newton) + inversion filter"));
+  state.failure = "step 22 failed: newton-failed: no descent";
+  const FrameVertices failed = build(state, titled);
+  EXPECT_TRUE(has(failed.words, "no-projection"));
+  EXPECT_TRUE(has(failed.words, "RUN FAILED: step 22 failed: newton-failed: no descent"));
+  const FrameLayout L = frame_layout(1280, 720);
+  const double band = title_band_height(L);
+  const float border = float(std::max(3.0, std::round(6.0 * L.scale)));
+  bool banner_at_band = false;
+  for (const ShapeVertex& p : failed.shapes) {
+    if (!(p.c.r == 0.80f && p.c.g == 0.04f && p.c.b == 0.06f)) continue;
+    banner_at_band = banner_at_band || p.y == float(band);
+    EXPECT_FALSE(p.y > border && p.y < float(band)) << "red inside the heading at y " << p.y;
+  }
+  EXPECT_TRUE(banner_at_band);
+}
+
 TEST(FrameMarks, ManyLargeInvertedTrianglesAreOutlinedNotRinged) {
   // Every triangle of a coarse square inverted (mirrored): each is large on screen, so its
   // green fill shows it; rings around all of them hid the body.
