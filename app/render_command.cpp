@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <regex>
 #include <string>
@@ -41,9 +42,12 @@
 #include "app/output_files.h"
 #include "app/render/frame_writer.h"
 #include "app/render/offscreen_context.h"
+#include "app/render/projector_mesh.h"
 #include "app/render/renderer.h"
+#include "app/render/side_by_side.h"
 #include "app/render/view_choices.h"
 #include "app/scene_options.h"
+#include "app/study/methods.h"
 #include "enum_names.h"
 #include "scene_io/scene_file.h"
 #include "simulation.h"
@@ -58,7 +62,8 @@ struct RenderOptions {
   int frames = 0;  // 0: until nothing moves (auto_frame_limit, settled_frames)
   int steps_per_frame = 0;  // 0: 1, or with a movie the lecture default (lecture_steps_per_frame)
   std::string out = "frames";
-  std::string size = "1280x720";
+  std::string size;  // "": 1280x720, or 1920x1080 with --compare
+  std::string compare;  // "A,B": two methods side by side (app/study/methods.h)
   bool no_edges = false;
   bool mp4 = false;
   bool gif = false;
@@ -70,7 +75,7 @@ struct RenderOptions {
   // run, a camera on the bodies, a mesh fine enough to show a gradient.
   std::string color_range = "run";  // render::parse_color_range_mode
   std::string camera = "follow";    // fixed | follow
-  int min_n_seg = 16;               // a square's n_seg raised to this (0: the scene's)
+  int min_n_seg = render::kProjectorMinSegments;  // a square's n_seg raised to this (0: the scene's)
   std::string paths = "auto";       // the bodies' paths: auto (several bodies), on, off
   std::string color_by = "det-f";     // kTriangleFieldNames (core/triangle_fields.h)
   bool stress_glyphs = false;
@@ -271,20 +276,38 @@ class Progress {
   double last_ = -1.0;
 };
 
-// What a render run produced: frames written, the det F range over them, and the failed
-// step's report (status Ok when none failed).
-struct RenderedFrames {
-  int frames = 0;
-  double det_lo = 1.0, det_hi = 1.0;  // over every step, not only the frames
+// One simulation a render shows: alone, or one side of --compare (then with its heading).
+struct RenderRun {
+  Simulation* sim = nullptr;
+  int steps_per_frame = 1;         // each run's, so that every frame is the same time for all
+  std::vector<std::string> title;  // DrawOptions::title; empty: none
+};
+
+// What one run did: the det F range over every step (not only the frames'), when nothing
+// moved any more, and the failed step's report (status Ok when none failed).
+struct RunOutcome {
+  double det_lo = 1.0, det_hi = 1.0;
   double settled_since = std::numeric_limits<double>::quiet_NaN();
   StepReport failure;
 };
 
-// The pipeline (see the top of this file): simulation thread, drawing here, PNG encoding
-// on the writer's threads. Stops at the end, at a failed step, a write error or Ctrl-C.
-RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
+// What a render produced: frames written and each run's outcome.
+struct RenderedFrames {
+  int frames = 0;
+  std::vector<RunOutcome> runs;
+};
+
+// The pipeline (see the top of this file): a simulation thread per run, drawing here, PNG
+// encoding on the writer's threads. Several runs (--compare) go in lockstep, frame i of
+// each the state after i * its steps-per-frame steps, drawn side by side at the renderer's
+// size each, with one det F colour range and one camera for all; a run that failed or
+// settled keeps its last frame (a failed one marked) while the others go on. Stops when
+// every run has ended, at a write error or Ctrl-C.
+RenderedFrames render_frames(const std::vector<RenderRun>& runs, render::Renderer& renderer,
                              render::FrameWriter& writer, const RenderOptions& opt,
                              const std::function<double()>& elapsed) {
+  const size_t n = runs.size();
+  const Simulation& first = *runs.front().sim;
   render::DrawOptions draw_options;
   draw_options.stress_glyphs = opt.stress_glyphs;
   draw_options.selected_triangle = opt.select_triangle;
@@ -294,91 +317,159 @@ RenderedFrames render_frames(Simulation& sim, render::Renderer& renderer,
   render::ColorRangeTracker color_range;
   color_range.mode = *render::parse_color_range_mode(opt.color_range);
   render::FollowCamera follow;
-  render::BodyPaths paths;
+  std::vector<render::BodyPaths> paths(n);
   const bool draw_paths =
-      opt.paths == "on" || (opt.paths == "auto" && render::paths_by_default(sim.scene));
+      opt.paths == "on" || (opt.paths == "auto" && render::paths_by_default(first.scene));
   // The dots: 4% of the bodies' start extent over their count (a body's size, roughly).
   double path_dot = 0.0;
-  if (draw_paths && sim.x.size() >= 2) {
-    Vec2 lo(sim.x[0], sim.x[1]), hi = lo;
-    for (Eigen::Index i = 0; i + 1 < sim.x.size(); i += 2) {
-      lo = lo.cwiseMin(Vec2(sim.x[i], sim.x[i + 1]));
-      hi = hi.cwiseMax(Vec2(sim.x[i], sim.x[i + 1]));
+  if (draw_paths && first.x.size() >= 2) {
+    Vec2 lo(first.x[0], first.x[1]), hi = lo;
+    for (Eigen::Index i = 0; i + 1 < first.x.size(); i += 2) {
+      lo = lo.cwiseMin(Vec2(first.x[i], first.x[i + 1]));
+      hi = hi.cwiseMax(Vec2(first.x[i], first.x[i + 1]));
     }
-    path_dot = 0.04 * (hi - lo).maxCoeff() / std::max<size_t>(1, sim.mesh.body_begin.size());
+    path_dot = 0.04 * (hi - lo).maxCoeff() / std::max<size_t>(1, first.mesh.body_begin.size());
   }
   const render::FrameLayout layout = renderer.layout();
+  const bool titled = std::any_of(runs.begin(), runs.end(),
+                                  [](const RenderRun& r) { return !r.title.empty(); });
+  // A titled view keeps its heading band clear of the bodies.
+  const render::PixelRect framed = titled ? render::below_title(layout) : layout.plot;
   const bool until_settled = opt.frames == 0;
-  const int frames =
-      until_settled ? auto_frame_limit(sim.scene.h, opt.steps_per_frame) : opt.frames;
+  const int frames = until_settled
+                         ? auto_frame_limit(first.scene.h, runs.front().steps_per_frame)
+                         : opt.frames;
   Progress progress(frames);
   RenderedFrames out;
-  SimulationThread producer(sim, frames, opt.steps_per_frame, until_settled, capture);
-  render::FrameState state;
-  while (!interrupted() && producer.next(&state)) {
-    if (!state.det_f.empty()) {  // (particles only, the course's chapter 0: no det F)
-      const auto [lo, hi] = render::bulk_det_f_range(state.det_f);
+  std::vector<std::unique_ptr<SimulationThread>> producers;
+  for (const RenderRun& r : runs)
+    producers.push_back(std::make_unique<SimulationThread>(*r.sim, frames, r.steps_per_frame,
+                                                           until_settled, capture));
+  // Each run's frame as drawn (its paths' overlays added): a run that has ended is drawn
+  // from it again.
+  std::vector<render::FrameState> shown(n);
+  std::vector<bool> running(n, true);
+  std::vector<std::vector<std::uint8_t>> views(n);
+  while (!interrupted()) {
+    bool fresh = false;
+    for (size_t i = 0; i < n; ++i) {
+      render::FrameState state;
+      if (running[i] && producers[i]->next(&state)) {
+        if (draw_paths) paths[i].add(&state, path_dot);
+        shown[i] = std::move(state);
+        fresh = true;
+      } else {
+        running[i] = false;
+      }
+    }
+    if (!fresh || interrupted()) break;
+    std::vector<const render::FrameState*> states;
+    for (const render::FrameState& s : shown) states.push_back(&s);
+    if (std::any_of(states.begin(), states.end(), [](auto* s) { return !s->det_f.empty(); })) {
+      const auto [lo, hi] = render::joint_bulk_det_f_range(states);
       color_range.apply(lo, hi, &draw_options);
     }
-    color_range.apply_field(state, &draw_options);
-    if (draw_paths) paths.add(&state, path_dot);
-    const render::Camera cam = opt.camera == "follow" ? follow.next(state, layout.plot)
-                                                      : render::scene_camera(state.scene, layout);
+    for (const render::FrameState* s : states) color_range.apply_field(*s, &draw_options);
+    const render::Camera cam =
+        opt.camera == "follow"
+            ? (n == 1 ? follow.next(shown.front(), framed)
+                      : follow.next(render::nodes_of_all(states), framed))
+            : render::fit_camera(render::scene_world_box(first.scene), framed);
     draw_options.camera = cam;
-    draw_options.edges = !opt.no_edges && render::edges_legible(state.scene, cam.pixels_per_metre);
-    renderer.draw(state, draw_options);
+    draw_options.edges = !opt.no_edges && render::edges_legible(first.scene, cam.pixels_per_metre);
     std::vector<std::uint8_t> pixels = writer.take_buffer();
-    renderer.read_pixels(&pixels);
-    if (!writer.submit(opt.out + "/" + frame_name(out.frames), renderer.width(), renderer.height(),
-                       std::move(pixels)))
+    for (size_t i = 0; i < n; ++i) {
+      draw_options.title = runs[i].title;
+      renderer.draw(shown[i], draw_options);
+      renderer.read_pixels(n == 1 ? &pixels : &views[i]);
+    }
+    if (n == 2)
+      render::join_side_by_side(views[0], views[1], renderer.width(), renderer.height(), &pixels);
+    if (!writer.submit(opt.out + "/" + frame_name(out.frames), renderer.width() * int(n),
+                       renderer.height(), std::move(pixels)))
       break;
     ++out.frames;
     progress.update(out.frames, elapsed());
   }
-  out.failure = producer.stop();  // joins; the simulation is the caller's again
-  out.det_lo = producer.det_lo();
-  out.det_hi = producer.det_hi();
-  out.settled_since = producer.settled_since();
-  if (interrupted()) out.failure = {};  // a signal stopped Newton mid-step: an interruption
+  for (size_t i = 0; i < n; ++i) {
+    RunOutcome r;
+    r.failure = producers[i]->stop();  // joins; the simulation is the caller's again
+    r.det_lo = producers[i]->det_lo();
+    r.det_hi = producers[i]->det_hi();
+    r.settled_since = producers[i]->settled_since();
+    if (interrupted()) r.failure = {};  // a signal stopped Newton mid-step: an interruption
+    out.runs.push_back(r);
+  }
   progress.clear();
   return out;
 }
 
-// A projector needs a gradient across the body: a square of the scene's own elasticity
-// meshed coarser than `min_n_seg` (compress's 4 x 4 shows eight flat patches) is meshed
-// at min_n_seg, unless the command line sets mesh.n_seg. Not for the course's mass-spring
-// grids and reduced bases, whose n_seg is part of the chapter, nor for bodies with their
-// own n_seg. Returns the note for the summary ("" when the scene's mesh is kept).
+// A projector needs a gradient across the body (render::refine_for_projector, shared with
+// the live window and the page), unless the command line sets mesh.n_seg or names inspect's
+// triangle (--select-triangle T: the scene's mesh). Returns the note for the summary ("" when
+// the scene's mesh is kept).
 std::string refine_for_projector(SceneDef& scene, const RenderOptions& opt) {
-  // --select-triangle T names `invfree inspect --triangle T`'s triangle: the scene's mesh.
-  if (opt.min_n_seg <= 0 || scene.n_seg >= opt.min_n_seg || opt.select_triangle >= 0) return "";
-  for (const std::string& o : opt.scene.overrides) {
-    std::string key = o.substr(0, o.find('='));
-    key.erase(std::remove_if(key.begin(), key.end(), [](char c) { return c == ' ' || c == '\t'; }),
-              key.end());
-    if (key == "mesh.n_seg") return "";
-  }
-  if (!scene.has_triangle_elasticity() || scene.reduced_basis != ReducedBasis::Full ||
-      scene.shape.kind != ShapeKind::Square)
-    return "";
-  for (const BodyDef& b : scene.bodies)
-    if (b.n_seg || (b.shape && *b.shape != ShapeKind::Square)) return "";
-  SceneDef finer = scene;
+  if (opt.select_triangle >= 0 || render::overrides_set_n_seg(opt.scene.overrides)) return "";
   const int from = scene.n_seg;
-  if (!apply_override(finer, "mesh.n_seg=" + std::to_string(opt.min_n_seg)).empty()) return "";
-  scene = std::move(finer);
+  if (!render::refine_for_projector(scene, opt.min_n_seg)) return "";
   return "mesh n_seg " + std::to_string(from) + " -> " + std::to_string(opt.min_n_seg) +
          " for the picture (--min-n-seg 0 keeps the scene's)";
+}
+
+// --compare A,B: two different methods of `invfree stability`'s table, in the order given
+// (left, right). Returns "" or a one-line error that lists the names.
+std::string parse_compare(const std::string& text, std::vector<const Method*>* out) {
+  std::string choices;
+  for (const Method& m : stability_methods())
+    choices += std::string(choices.empty() ? "" : ", ") + m.name;
+  std::vector<std::string> names;
+  for (size_t begin = 0; begin <= text.size();) {
+    const size_t end = std::min(text.find(',', begin), text.size());
+    names.push_back(text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  if (names.size() != 2)
+    return "--compare: name two methods, left,right (got " + std::to_string(names.size()) +
+           " in '" + text + "'), e.g. lecture,no-projection; one of: " + choices;
+  out->clear();
+  for (const std::string& name : names) {
+    const Method* m = find_method(name);
+    if (!m) return "--compare: unknown method '" + name + "' (one of: " + choices + ")";
+    out->push_back(m);
+  }
+  if (names[0] == names[1])
+    return "--compare: '" + names[0] + "' twice; name two different methods (one of: " + choices +
+           ")";
+  return "";
+}
+
+// Returns a number for the summary: "%.4f" below 1e5, "%.4g" above.
+std::string det_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, std::abs(v) < 1e5 ? "%.4f" : "%.4g", v);
+  return buf;
 }
 
 int run_render(const RenderOptions& opt) {
   std::string error;
   auto scene = opt.scene.resolve(&error);
   if (!scene) return fail(exit_code::kBadInput, error);
+  std::vector<const Method*> compare;
+  if (!opt.compare.empty())
+    if (auto e = parse_compare(opt.compare, &compare); !e.empty())
+      return fail(exit_code::kBadInput, e);
   const std::string refined = refine_for_projector(*scene, opt);
+  // Two views side by side: each 960x1080 at the default size, as tall as a projector's
+  // picture and as wide as half of it.
+  const std::string size = !opt.size.empty() ? opt.size : compare.empty() ? "1280x720" : "1920x1080";
   int width = 0, height = 0;
-  if (auto e = parse_frame_size(opt.size, &width, &height); !e.empty())
+  if (auto e = parse_frame_size(size, &width, &height); !e.empty())
     return fail(exit_code::kBadInput, e);
+  if (!compare.empty() && width % 2 != 0)
+    return fail(exit_code::kBadInput, "--size " + size +
+                                          ": --compare needs an even width (two views of half "
+                                          "the width each), e.g. " +
+                                          std::to_string(width + 1) + "x" + std::to_string(height));
   std::string ffmpeg;
   const bool movie_wanted = opt.mp4 || opt.gif;
   const char* movie_flag = opt.mp4 ? "--mp4" : "--gif";
@@ -403,7 +494,23 @@ int run_render(const RenderOptions& opt) {
                     ": the real-time frame rate 1 / (h * steps-per-frame) = " + rate +
                     " frames/s is outside 0.1 to 1000; give --fps or change --steps-per-frame");
   }
-  Simulation sim = make_simulation(*scene);
+  // The runs: the scene alone, or once per compared method (its settings applied; an
+  // explicit method takes its substeps within each of the scene's steps, so that a frame
+  // is the same simulated time on both sides).
+  std::vector<std::unique_ptr<Simulation>> sims;
+  std::vector<RenderRun> runs;
+  if (compare.empty()) {
+    sims.push_back(std::make_unique<Simulation>(make_simulation(*scene)));
+    runs.push_back({sims.back().get(), run.steps_per_frame, {}});
+  }
+  for (const Method* m : compare) {
+    SceneDef with = *scene;
+    if (auto e = apply_method(*m, with, true); !e.empty())
+      return fail(exit_code::kBadInput, "--compare: " + std::string(m->name) + ": " + e);
+    sims.push_back(std::make_unique<Simulation>(make_simulation(with)));
+    runs.push_back({sims.back().get(), run.steps_per_frame * m->substeps, {m->name, m->label}});
+  }
+  const Simulation& sim = *sims.front();
   if (opt.select_triangle >= sim.mesh.triangle_count())
     return fail(exit_code::kBadInput,
                 "--select-triangle: " + std::to_string(opt.select_triangle) +
@@ -414,7 +521,8 @@ int run_render(const RenderOptions& opt) {
 
   auto context = render::OffscreenContext::create(&error);
   if (!context) return fail(exit_code::kOutputFailed, "offscreen rendering: " + error);
-  auto renderer = render::Renderer::create(context->get_proc_address(), width, height, &error);
+  const int view_width = width / static_cast<int>(runs.size());
+  auto renderer = render::Renderer::create(context->get_proc_address(), view_width, height, &error);
   if (!renderer) return fail(exit_code::kOutputFailed, "offscreen rendering: " + error);
 
   const auto start = std::chrono::steady_clock::now();
@@ -422,17 +530,20 @@ int run_render(const RenderOptions& opt) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   render::FrameWriter writer(opt.writer_threads, opt.png_level);
-  const RenderedFrames done = render_frames(sim, *renderer, writer, run, elapsed);
+  const RenderedFrames done = render_frames(runs, *renderer, writer, run, elapsed);
   const std::string write_error = writer.finish();
   const double render_seconds = elapsed();
   if (!write_error.empty()) return fail(exit_code::kOutputFailed, write_error);
+  const auto failed = [](const RunOutcome& r) { return r.failure.status != StepStatus::Ok; };
+  const bool any_failed = std::any_of(done.runs.begin(), done.runs.end(), failed);
 
   std::string movie;
   const std::string movie_path = opt.out + (opt.gif ? "/movie.gif" : "/movie.mp4");
   bool movie_stopped = false;  // interrupted while ffmpeg ran
   for (const bool gif : {false, true}) {
     if (!(gif ? opt.gif : opt.mp4)) continue;
-    if (done.failure.status != StepStatus::Ok || interrupted() || done.frames == 0) break;
+    // (A side by side shows a failed side's mark: that movie is what the comparison is for.)
+    if ((compare.empty() && any_failed) || interrupted() || done.frames == 0) break;
     const std::string path = opt.out + (gif ? "/movie.gif" : "/movie.mp4");
     Progress progress(done.frames);
     const auto on_frame = [&](int n) { progress.encoding(path, n, elapsed()); };
@@ -448,41 +559,67 @@ int run_render(const RenderOptions& opt) {
   std::snprintf(rate_text, sizeof rate_text, "%.4g", fps);
   std::snprintf(encode_text, sizeof encode_text, "%.1f s", seconds - render_seconds);
   // det F as `invfree simulate` gives it: over every state of the run, not only the frames'.
-  char det_text[128] = "no triangles";
-  const auto det = [](double v) { return std::abs(v) < 1e5 ? "%.4f" : "%.4g"; };
-  if (sim.mesh.triangle_count() > 0)
-    std::snprintf(det_text, sizeof det_text,
-                  (std::string("det F in [") + det(done.det_lo) + ", " + det(done.det_hi) +
-                   "] over steps 0..%ld")
-                      .c_str(),
-                  done.det_lo, done.det_hi, sim.step_count);
-  std::printf(
-      "%s: %d frames %dx%d in %s/ (%s..%s%s), %ld steps, t = %.3f s, %.1f s, %.1f frames/s, "
-      "%s%s\n",
-      sim.scene.name.c_str(), done.frames, width, height, opt.out.c_str(), frame_name(0).c_str(),
-      frame_name(std::max(done.frames - 1, 0)).c_str(), movie.c_str(), sim.step_count, sim.time,
-      seconds, render_seconds > 0 ? done.frames / render_seconds : 0.0, det_text,
-      movie.empty()
-          ? ""
-          : (std::string("; movie: ") + rate_text + " frames/s, " +
-             std::to_string(run.steps_per_frame) + " step(s)/frame, encoded in " + encode_text)
-                .c_str());
+  const auto det_range = [&](const RunOutcome& r, const Simulation& s) {
+    if (s.mesh.triangle_count() == 0) return std::string("no triangles");
+    return "det F in [" + det_text(r.det_lo) + ", " + det_text(r.det_hi) + "] over steps 0.." +
+           std::to_string(s.step_count);
+  };
+  const std::string movie_note =
+      movie.empty() ? ""
+                    : std::string("; movie: ") + rate_text + " frames/s, " +
+                          std::to_string(run.steps_per_frame) + " step(s)/frame, encoded in " +
+                          encode_text;
+  double t_end = 0.0;  // the furthest run's time
+  for (const auto& s : sims) t_end = std::max(t_end, s->time);
+  std::printf("%s: %d frames %dx%d in %s/ (%s..%s%s), ", sim.scene.name.c_str(), done.frames,
+              width, height, opt.out.c_str(), frame_name(0).c_str(),
+              frame_name(std::max(done.frames - 1, 0)).c_str(), movie.c_str());
+  if (compare.empty())
+    std::printf("%ld steps, t = %.3f s, %.1f s, %.1f frames/s, %s%s\n", sim.step_count, sim.time,
+                seconds, render_seconds > 0 ? done.frames / render_seconds : 0.0,
+                det_range(done.runs[0], sim).c_str(), movie_note.c_str());
+  else
+    std::printf("%s (left) beside %s (right), t = %.3f s, %.1f s, %.1f frames/s%s\n",
+                compare[0]->name, compare[1]->name, t_end, seconds,
+                render_seconds > 0 ? done.frames / render_seconds : 0.0, movie_note.c_str());
+  for (size_t i = 0; i < compare.size(); ++i) {  // each side's run
+    const RunOutcome& r = done.runs[i];
+    const Simulation& s = *sims[i];
+    std::printf("render: %s %s: %ld steps, t = %.3f s, %s%s\n", i == 0 ? "left" : "right",
+                compare[i]->name, s.step_count, s.time, det_range(r, s).c_str(),
+                failed(r) ? ("; FAILED at step " + std::to_string(s.step_count + 1) + ": " +
+                             step_status_name(r.failure.status) + ": " + r.failure.message +
+                             " (its view keeps its last good state, marked)")
+                                .c_str()
+                          : "");
+  }
   if (!refined.empty()) std::printf("render: %s\n", refined.c_str());
-  if (opt.frames == 0 && done.failure.status == StepStatus::Ok && !interrupted()) {
-    if (!std::isnan(done.settled_since))
+  if (opt.frames == 0 && !interrupted() && (!compare.empty() || !any_failed)) {
+    // Ended by itself: every run failed or settled, or the limit with one still moving.
+    const bool moving = std::any_of(done.runs.begin(), done.runs.end(), [&](const RunOutcome& r) {
+      return !failed(r) && std::isnan(r.settled_since);
+    });
+    double settled = 0.0;
+    for (const RunOutcome& r : done.runs)
+      if (!failed(r)) settled = std::max(settled, r.settled_since);
+    if (!moving && compare.empty())
       std::printf("render: ended %.2f s after nothing moved any more (t = %.2f s; no node "
                   "faster than %.0f%% of the body's size per second, the ceiling at rest); "
                   "--frames N renders N frames\n",
-                  kSettledHold, done.settled_since, 100.0 * kSettledSpeed);
+                  kSettledHold, settled, 100.0 * kSettledSpeed);
+    else if (!moving)
+      std::printf("render: ended when each side had failed or stopped moving (the last at t = "
+                  "%.2f s, held %.2f s); --frames N renders N frames\n",
+                  settled, kSettledHold);
     else
       std::printf("render: stopped at the limit of %d frames (t = %.2f s) while the bodies still "
                   "moved; --frames N renders N frames\n",
-                  done.frames, sim.time);
+                  done.frames, t_end);
   }
-  if (done.failure.status != StepStatus::Ok)
+  if (compare.empty() && any_failed)
     return fail(exit_code::kRunFailed, "step " + std::to_string(sim.step_count + 1) +
-                                           " failed: " + step_status_name(done.failure.status) +
-                                           ": " + done.failure.message);
+                                           " failed: " + step_status_name(done.runs[0].failure.status) +
+                                           ": " + done.runs[0].failure.message);
   if (movie_stopped)
     return fail(interrupted_exit_code(), "interrupted while making " + movie_path +
                                              " (none written); the " + std::to_string(done.frames) +
@@ -535,9 +672,18 @@ void register_render_command(CLI::App& app, int& exit_code) {
   add_output_directory_option(cmd, opt.out,
                               "output directory (must be empty or new, see --force; locked while "
                               "the run writes, see docs/outputs.md)");
-  cmd->add_option("--size", opt.size, "frame size in pixels")
-      ->type_name("WxH")
-      ->capture_default_str();
+  cmd->add_option("--size", opt.size,
+                  "frame size in pixels (default 1280x720; with --compare 1920x1080: two views "
+                  "of 960x1080)")
+      ->type_name("WxH");
+  cmd->add_option("--compare", opt.compare,
+                  "render the scene twice in lockstep, side by side: method A on the left, B on "
+                  "the right (names of `invfree stability --methods`, e.g. "
+                  "lecture,no-projection), each view titled with its method, one det F scale and "
+                  "one camera for both; a side that fails keeps its last good state, marked, "
+                  "while the other goes on (and the exit status stays 0: the failure is what "
+                  "is shown)")
+      ->type_name("A,B");
   cmd->add_flag("--no-edges", opt.no_edges,
                 "do not draw the triangle edges (they are left out anyway where closer than 6 "
                 "pixels)");
