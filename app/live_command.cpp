@@ -13,6 +13,7 @@
 #include "app/live/key_bindings.h"
 #include "app/live/live_app.h"
 #include "app/output_files.h"
+#include "app/render/projector_mesh.h"
 #include "app/scene_options.h"
 #include "scene_io/builtin_scenes.h"
 #include "scene_io/scene_file.h"
@@ -27,7 +28,11 @@ struct LiveCommandOptions {
   std::vector<std::string> scene_files;
   std::string size = "1280x720";
   std::string det_f_panel = "beside";  // beside | over | hidden
-  std::string color_range = "fixed";   // render::parse_color_range_mode
+  // The defaults are for a projector (docs/live.md), as `invfree render`'s:
+  // colours scaled to the run, a camera on the bodies, a mesh fine enough for a gradient.
+  std::string color_range = "run";     // render::parse_color_range_mode
+  std::string camera = "follow";       // follow | fixed
+  int min_n_seg = render::kProjectorMinSegments;  // each square's n_seg raised to this
   std::string color_by = "det-f";      // kTriangleFieldNames
   live::LiveOptions live;
 };
@@ -92,6 +97,12 @@ int run_live_command(const LiveCommandOptions& opt) {
                    : opt.det_f_panel == "hidden" ? render::PanelMode::Hidden
                                                  : render::PanelMode::Side;
   lo.color_range = *render::parse_color_range_mode(opt.color_range);
+  lo.follow_camera = opt.camera == "follow";
+  lo.min_n_seg = opt.min_n_seg;
+  // The starting scene's own mesh where the command line sets it, or names inspect's
+  // triangle (--select-triangle T), as render does.
+  lo.keep_selected_mesh =
+      lo.select_triangle >= 0 || render::overrides_set_n_seg(opt.scene.overrides);
   lo.color_by = *enum_from_name(kTriangleFieldNames, opt.color_by);
   if (lo.select_triangle >= 0) {
     // Checked before the window opens, as the outputs are: an index off the mesh is a
@@ -154,10 +165,23 @@ void register_live_command(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::IsMember({"beside", "over", "hidden"}));
   cmd->add_option("--color-range", opt.color_range,
-                  "det F colours: fixed (0.25..4), run (automatic, from the run so far) or frame "
+                  "det F colours: run (default: automatic, from the bulk of det F over the run "
+                  "so far; R and a new scene start it again), fixed (0.25..4) or frame "
                   "(automatic per frame) (key C)")
       ->capture_default_str()
       ->check(CLI::IsMember({"fixed", "run", "frame"}));
+  cmd->add_option("--camera", opt.camera,
+                  "follow (default: keeps the bodies framed, moving smoothly; a pan or zoom "
+                  "takes over until F) or fixed (the scene's whole stage)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fixed", "follow"}));
+  cmd->add_option("--min-n-seg", opt.min_n_seg,
+                  "mesh each scene's square body of its own elasticity at least this fine for "
+                  "the picture (the n_seg slider shows it), unless --set mesh.n_seg is given (0: "
+                  "the scenes' meshes; the course's mass-spring grids and reduced bases are "
+                  "kept)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4096));
   std::vector<std::string> fields;
   for (const auto& f : kTriangleFieldNames) fields.emplace_back(f.name);
   cmd->add_option("--color-by", opt.color_by,

@@ -5,7 +5,8 @@
 #include "app/body_extent.h"
 namespace invfree::live {
 
-void AutoFitView::fit(const LiveController& lc, const render::PixelRect& visible, bool bodies) {
+void AutoFitView::fit_box(const LiveController& lc, const render::PixelRect& visible,
+                          bool bodies) {
   render::WorldBox b = render::scene_world_box(lc.settings());
   const VecX& x = lc.simulation().x;
   if (x.size() >= 2) {
@@ -29,12 +30,45 @@ void AutoFitView::fit(const LiveController& lc, const render::PixelRect& visible
   mesh_generation_ = lc.mesh_generation();
 }
 
-void AutoFitView::refit(const LiveController& lc, const render::PixelRect& visible) {
-  if (auto_fit_) fit(lc, visible, bodies_);
+// The follow camera's next view: the bodies (render's FollowCamera), eased from the last.
+void AutoFitView::follow_step(const LiveController& lc, const render::PixelRect& visible) {
+  const Simulation& sim = lc.simulation();
+  if (sim.x.size() < 2) return fit_box(lc, visible, false);  // nothing to follow
+  const render::Camera c = camera_.next(sim.x, sim.scene, visible);
+  view_.pixels_per_metre = c.pixels_per_metre;
+  view_.center = c.to_world(Vec2(0.5 * view_.width, 0.5 * view_.height));
+  mesh_generation_ = lc.mesh_generation();
+  restarts_ = lc.restarts();
 }
 
-void AutoFitView::follow_scene(const LiveController& lc, const render::PixelRect& visible) {
-  if (lc.mesh_generation() != mesh_generation_) fit(lc, visible);
+void AutoFitView::fit(const LiveController& lc, const render::PixelRect& visible) {
+  if (!follow_) return fit_box(lc, visible, false);
+  auto_fit_ = true;
+  bodies_ = false;
+  camera_.last.reset();  // a jump, not an easing from elsewhere
+  follow_step(lc, visible);
+}
+
+void AutoFitView::fit_bodies(const LiveController& lc, const render::PixelRect& visible) {
+  if (follow_)
+    fit(lc, visible);
+  else
+    fit_box(lc, visible, true);
+}
+
+void AutoFitView::refit(const LiveController& lc, const render::PixelRect& visible) {
+  if (!auto_fit_) return;
+  if (follow_ && !bodies_)
+    fit(lc, visible);
+  else
+    fit_box(lc, visible, bodies_);
+}
+
+void AutoFitView::update(const LiveController& lc, const render::PixelRect& visible) {
+  if (lc.mesh_generation() != mesh_generation_) return fit(lc, visible);
+  if (!follows()) return;
+  if (lc.restarts() != restarts_) return fit(lc, visible);
+  if (!lc.pulling()) follow_step(lc, visible);
 }
 
 void AutoFitView::set_size(int width, int height) {

@@ -18,7 +18,7 @@ constexpr KeyBinding kKeys[] = {
      "screenshot (numbered PNG, path printed)"},
     {GLFW_KEY_R, GLFW_MOD_CONTROL, Action::ToggleRecord, "Ctrl+R",
      "start / stop recording a PNG sequence"},
-    {GLFW_KEY_F, 0, Action::FitView, "F", "frame the bodies (every node)"},
+    {GLFW_KEY_F, 0, Action::FitView, "F", "frame the bodies (follow them again after a pan or zoom)"},
     {kTypedKey, 0, Action::UiScaleUp, "+", "larger text and panels (UI scale; also = and numpad +)",
      "+="},
     {kTypedKey, 0, Action::UiScaleDown, "-", "smaller text and panels", "-"},

@@ -36,6 +36,7 @@
 #include "app/live/presentation.h"
 #include "app/live/real_time_rate.h"
 #include "app/live/window_capture.h"
+#include "app/render/projector_mesh.h"
 #include "app/render/renderer.h"
 #include "triangle_fields.h"
 
@@ -132,6 +133,15 @@ struct LiveAppImpl {
     return {x0, L.plot.y, x1 - x0, L.plot.h};
   }
 
+  // Where the view frames the world: the visible part less the det F panel laid over the
+  // picture (the world goes on under it, translucent, but the body is framed beside it).
+  render::PixelRect framing_rect() const {
+    render::PixelRect r = visible_rect();
+    const render::FrameLayout L = renderer->layout(panel.det_f_panel);
+    if (L.overlay && L.panel.x > r.x + 50.0) r.w = std::min(r.w, L.panel.x - r.x);
+    return r;
+  }
+
   // The UI scale, clamped: ImGui's fonts and spacing, and the det F panel at its 1280x720
   // design times the same scale. Between frames only (fonts cannot change inside one).
   void apply_ui_scale() {
@@ -140,7 +150,7 @@ struct LiveAppImpl {
     if (scale != applied_ui_scale) {
       applied_ui_scale = scale;
       panel.big_font = window.set_ui_scale(scale);
-      view.refit(*controller, visible_rect());
+      view.refit(*controller, framing_rect());
     }
     const double frame_scale = std::min(renderer->width() / 1280.0, renderer->height() / 720.0);
     renderer->set_text_scale(scale * window.pixel_scale() / std::max(frame_scale, 1e-3));
@@ -153,7 +163,7 @@ struct LiveAppImpl {
     if (fw != renderer->width() || fh != renderer->height()) {
       if (const std::string e = renderer->resize(fw, fh); !e.empty()) say("invfree: live: " + e);
       view.set_size(fw, fh);
-      view.refit(*controller, visible_rect());
+      view.refit(*controller, framing_rect());
     }
   }
 
@@ -251,7 +261,7 @@ void LiveAppImpl::handle_action(Action a) {
       break;
     case Action::TogglePanel:
       panel.visible = !panel.visible;
-      view.refit(*controller, visible_rect());
+      view.refit(*controller, framing_rect());
       break;
     case Action::ToggleHelp:
       panel.show_help = !panel.show_help;
@@ -263,7 +273,7 @@ void LiveAppImpl::handle_action(Action a) {
       toggle_recording();
       break;
     case Action::FitView:
-      view.fit(*controller, visible_rect(), true);
+      view.fit_bodies(*controller, framing_rect());
       break;
     case Action::UiScaleUp:
       panel.ui_scale = std::min(kMaxUiScale, panel.ui_scale + 0.25f);
@@ -314,7 +324,7 @@ void LiveAppImpl::set_presenting(bool on) {
   panel.visible = on ? false : panel_before_presenting;
   window.set_fullscreen(on);
   resize_if_needed();
-  view.refit(*controller, visible_rect());
+  view.refit(*controller, framing_rect());
 }
 
 void LiveAppImpl::handle_keys() {
@@ -392,8 +402,9 @@ void LiveAppImpl::build_ui(const Injection* inject, const InputFrame* input, boo
   if (req.fit_view) handle_action(Action::FitView);
   if (req.toggle_panel) handle_action(Action::TogglePanel);
   if (req.quit) window.request_close();  // (Esc, Action::Quit, first releases a triangle)
-  // A new scene or mesh: show it whole (even after the user chose a view).
-  view.follow_scene(*controller, visible_rect());
+  // A new scene or mesh: its default view (even after the user chose a view); the follow
+  // camera's next step.
+  view.update(*controller, framing_rect());
   const render::PixelRect r = visible_rect();
   const WidgetRect area{static_cast<float>(r.x / ps), static_cast<float>(r.y / ps),
                         static_cast<float>((r.x + r.w) / ps), static_cast<float>((r.y + r.h) / ps)};
@@ -436,7 +447,13 @@ std::future<void> LiveAppImpl::draw_picture() {
     color_range.reset();
     color_range_restarts = controller->restarts();
   }
-  color_range.apply(controller->stats().min_det_f, controller->stats().max_det_f, &draw_options);
+  // The automatic ranges from the bulk of det F (its 10th to 90th percentile), as render's:
+  // a scale to the extremes paints the squeezed bulk the pale tint of the fixed scale.
+  const auto [det_lo, det_hi] = controller->det_f().empty()
+                                    ? std::pair(controller->stats().min_det_f,
+                                                controller->stats().max_det_f)
+                                    : render::bulk_det_f_range(controller->det_f());
+  color_range.apply(det_lo, det_hi, &draw_options);
   const double capture_start = thread_cpu_ms();
   const render::FrameState state = render::capture_frame_state(
       controller->simulation(), &controller->det_f(), {panel.color_by, panel.stress_glyphs});
@@ -504,7 +521,11 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
     *error = no_window_message(e);
     return nullptr;
   }
-  a.controller = std::make_unique<LiveController>(options.scenes, options.selected);
+  std::vector<SceneChoice> scenes = options.scenes;
+  for (size_t i = 0; i < scenes.size(); ++i)
+    if (!(options.keep_selected_mesh && static_cast<int>(i) == options.selected))
+      render::refine_for_projector(scenes[i].scene, options.min_n_seg);
+  a.controller = std::make_unique<LiveController>(std::move(scenes), options.selected);
   a.controller->set_playing(!options.paused);
   a.controller->steps_per_frame = options.steps_per_frame;
   a.panel.visible = !options.hide_panel;
@@ -526,7 +547,8 @@ std::unique_ptr<LiveApp> LiveApp::create(const LiveOptions& options, std::string
   }
   a.panel.max_segments = options.max_segments;
   a.view.set_size(a.renderer->width(), a.renderer->height());
-  a.view.fit(*a.controller, a.visible_rect());
+  a.view.set_follow(options.follow_camera);
+  a.view.fit(*a.controller, a.framing_rect());
   if (options.presentation) a.set_presenting(true);
   if (!options.record_dir.empty()) {
     const std::string dir = options.record_dir;

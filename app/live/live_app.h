@@ -61,7 +61,15 @@ struct LiveOptions {
   // 0: from the window (its content scale times its size over 1280x720, at least 1).
   float ui_scale = 0.0f;
   render::PanelMode det_f_panel = render::PanelMode::Side;
+  // The projector's defaults (`invfree live` and the page choose them, docs/live.md):
+  // these are the plain ones: the scene's mesh, the fixed scale, the stage.
   render::ColorRangeMode color_range = render::ColorRangeMode::Fixed;
+  // Each scene's square meshed at least this fine (render::refine_for_projector; 0: the
+  // scenes' own meshes), except the selected one's with keep_selected_mesh (its mesh set on
+  // the command line, or --select-triangle naming inspect's triangle).
+  int min_n_seg = 0;
+  bool keep_selected_mesh = false;
+  bool follow_camera = false;  // the camera follows the bodies (false: frames the stage)
   TriangleField color_by = TriangleField::DetF;  // what the triangles are coloured by
   bool stress_glyphs = false;
   bool show_landscape = false;  // the energy landscape's window

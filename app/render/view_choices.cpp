@@ -88,10 +88,14 @@ WorldBox padded(const WorldBox& b, double pad) {
 }  // namespace
 
 Camera FollowCamera::next(const FrameState& state, const PixelRect& plot) {
-  if (state.x.size() < 2) return last.value_or(Camera{});
-  const WorldBox body = node_box(state.x);
+  return next(state.x, state.scene, plot);
+}
+
+Camera FollowCamera::next(const VecX& x, const SceneDef& scene, const PixelRect& plot) {
+  if (x.size() < 2) return last.value_or(Camera{});
+  const WorldBox body = node_box(x);
   const double size =
-      std::max({body.x1 - body.x0, body.y1 - body.y0, 0.2 * scene_length_scale(state.scene)});
+      std::max({body.x1 - body.x0, body.y1 - body.y0, 0.2 * scene_length_scale(scene)});
   // Aim: the bodies with a third of their size around them (the planes show when near).
   const Camera target = fit_camera(padded(body, 0.35 * size), plot);
   Camera c = target;

@@ -80,6 +80,8 @@ bool paths_by_default(const SceneDef& scene);
 struct FollowCamera {
   std::optional<Camera> last;
   Camera next(const FrameState& state, const PixelRect& plot);
+  // The same from the nodes' positions x (2N) of a scene (the live window's state).
+  Camera next(const VecX& x, const SceneDef& scene, const PixelRect& plot);
 };
 
 }  // namespace invfree::render

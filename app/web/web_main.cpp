@@ -6,7 +6,10 @@
 // Inputs: the page's URL query: paused=1 starts paused (the tests' first frame),
 // n_seg=N starts with that mesh (through the controller's checks: a value they refuse
 // leaves the scene's mesh, and the panel's note says why), scene=NAME picks a built-in
-// scene.
+// scene. The projector's defaults of `invfree live` (docs/live.md): a square
+// coarser than 16 x 16 meshed at 16 (min_n_seg=0 keeps the scenes' meshes), the colour
+// range of the run (color_range=fixed|run|frame), the camera on the bodies (camera=fixed:
+// the whole stage).
 // Touch (shell.html): a finger is the left mouse button; a short tap on a triangle inspects it
 // (as a click does on the desktop), a tap on empty space releases the inspected one, or, with
 // none inspected, plays or pauses.
@@ -31,6 +34,7 @@
 #include "app/live/course.h"
 #include "app/live/live_app.h"
 #include "app/live/step_time.h"
+#include "app/render/projector_mesh.h"
 #include "linalg/parallel.h"
 #include "scene/scene.h"
 #include "scene_io/builtin_scenes.h"
@@ -132,6 +136,11 @@ std::unique_ptr<LiveApp> open_app() {
   for (size_t i = 0; i < o.scenes.size(); ++i)
     if (o.scenes[i].label == scene) o.selected = static_cast<int>(i);
   o.paused = query_int("paused", 0) != 0;
+  o.min_n_seg = std::max(0, query_int("min_n_seg", invfree::render::kProjectorMinSegments));
+  const std::string range = query_string("color_range");
+  o.color_range = invfree::render::parse_color_range_mode(range.empty() ? "run" : range)
+                      .value_or(invfree::render::ColorRangeMode::Run);
+  o.follow_camera = query_string("camera") != "fixed";
   o.max_segments = kWebMaxSegments;
   o.touch_controls = true;  // a phone has no Tab key: the panel opens and closes by a button
   if (software_webgl()) o.samples = 1;

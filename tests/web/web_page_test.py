@@ -346,16 +346,18 @@ def check_selected_sane(sel, t, what):
         fail(f"{what}: clamped {sel['clamped']} but eigenvalues {eig}")
 
 
-def inspect_cli(invfree, step, triangle):
-    """`invfree inspect --json` for the compress scene at `step`, or None when this program
-    has no inspect command."""
+def inspect_cli(invfree, step, triangle, n_seg):
+    """`invfree inspect --json` for the compress scene at `step` on the page's mesh (the
+    page meshes compress at 16 for a projector, inspect at the scene's 4), or None when this
+    program has no inspect command."""
     import json
     import subprocess
     usage = subprocess.run([invfree, "--help"], capture_output=True, text=True).stdout
     if not re.search(r"^\s*inspect\s", usage, re.M):
         return None
-    run = subprocess.run([invfree, "inspect", "--scene", "compress", "--step", str(step),
-                          "--triangle", str(triangle), "--json"], capture_output=True, text=True)
+    run = subprocess.run([invfree, "inspect", "--scene", "compress", "--set", f"mesh.n_seg={n_seg}",
+                          "--step", str(step), "--triangle", str(triangle), "--json"],
+                         capture_output=True, text=True)
     if run.returncode != 0:
         fail(f"invfree inspect --step {step} --triangle {triangle} exited {run.returncode}: "
              f"{run.stderr.strip()}")
@@ -366,7 +368,7 @@ def close(a, b, rel=1e-6, abs_=1e-9):
     return abs(a - b) <= rel * max(abs(a), abs(b)) + abs_
 
 
-def compare_with_inspect(sel, invfree):
+def compare_with_inspect(sel, invfree, n_seg):
     """The page's values against `invfree inspect` for the same triangle and step. The page
     solves with the core's own LDL^T (no CHOLMOD) and another compiler: the same numbers to
     about 1e-6, not to the bit."""
@@ -376,7 +378,7 @@ def compare_with_inspect(sel, invfree):
     if not os.access(invfree, os.X_OK):
         print(f"  ({invfree} is not built: not compared with invfree inspect)")
         return
-    cli = inspect_cli(invfree, sel["step"], sel["triangle"])
+    cli = inspect_cli(invfree, sel["step"], sel["triangle"], n_seg)
     if cli is None:
         print(f"  ({invfree} has no inspect command: not compared with invfree inspect)")
         return
@@ -439,7 +441,7 @@ def test_picking(driver, url, golden_dir, out_dir, invfree):
     settle(driver, "frames after the click")
     box = check_outline_at(screenshot(driver), pd.page_state(driver), *centroids[a], "click")
     print(f"  outlined in the picture at {box}")
-    compare_with_inspect(sel, invfree)
+    compare_with_inspect(sel, invfree, state["n_seg"])
 
     # The golden of the page with the inspector shown (paused: nothing moves; the panel's
     # ms/step is wall-clock and is left out of the comparison with its whole panel).
@@ -702,6 +704,49 @@ def test_layouts(driver, url, out_dir):
               f"+/- by tap")
 
 
+SQUEEZE_STEPS = 375  # compress at 3.75 s: the ceiling has squeezed the square (render's frame)
+
+
+def tinted(r, g, b):
+    """A pixel of the body's colours (the stage, the hatching and the edges are grey)."""
+    return max(r, g, b) - min(r, g, b) >= 30
+
+
+def clearly_coloured(r, g, b):
+    return max(r, g, b) - min(r, g, b) >= 60
+
+
+def test_defaults(driver, url, out_dir):
+    # The projector's defaults (docs/live.md), as the page opens: compress meshed
+    # at 16, and at the squeeze the body spans at least half the picture's width (the camera
+    # follows it) and most of its tinted pixels are clearly coloured (the run's colour range,
+    # not the pale 0.25..4) -- at 1280x720 with the panel open and on a phone's 390x844.
+    for width, height in ((WIDTH, HEIGHT), (390, 844)):
+        what = f"{width}x{height}"
+        state = load_at(driver, url, width, height)
+        if state["n_seg"] != 16:
+            fail(f"{what}: the page opens on compress at n_seg {state['n_seg']}, not 16")
+        state = pd.wait_for(driver, lambda s: s["steps"] >= SQUEEZE_STEPS,
+                            f"{what}: {SQUEEZE_STEPS} steps", timeout=300)
+        picture = screenshot(driver)
+        state = pd.page_state(driver)
+        x0, y0, x1, y1 = state["widgets"]["picture"]
+        xs = [x for x, _ in triangle_centroids(driver, state["triangles"]) if x is not None]
+        span = (max(xs) - min(xs)) / (x1 - x0)
+        box = tuple(int(round(v)) for v in (x0, y0, x1, y1))
+        tint = count_pixels(picture, box, tinted)
+        clear = count_pixels(picture, box, clearly_coloured) / max(tint, 1)
+        os.makedirs(out_dir, exist_ok=True)
+        picture.save(os.path.join(out_dir, f"defaults_{what}.png"))
+        if span < 0.5:
+            fail(f"{what}: at step {state['steps']} the body's triangles span {span:.0%} of the "
+                 f"picture's width")
+        if clear < 0.6:
+            fail(f"{what}: {clear:.0%} of the body's tinted pixels are clearly coloured: pale")
+        print(f"{what}: n_seg 16; at step {state['steps']} the body spans {span:.0%} of the "
+              f"picture's width, {clear:.0%} of its tinted pixels clearly coloured")
+
+
 def test_step_time(driver, url):
     # Issue 32 item 12: a small scene's step takes well under a millisecond; the panel's
     # figure (the same text as window.invfree.step_time, app/live/step_time.h: the mean over
@@ -748,7 +793,8 @@ def main():
              ("ring", lambda: test_ring(driver, server.url, golden_dir, out_dir)),
              ("particles", lambda: test_particles(driver, server.url)),
              ("layouts", lambda: test_layouts(driver, server.url, out_dir)),
-             ("step time", lambda: test_step_time(driver, server.url)))
+             ("step time", lambda: test_step_time(driver, server.url)),
+             ("defaults", lambda: test_defaults(driver, server.url, out_dir)))
     only = [n for n in os.environ.get("INVFREE_WEB_TESTS", "").split(",") if n]
     if only:
         tests = tuple(t for t in tests if t[0] in only)
