@@ -83,6 +83,7 @@ StabilityResult run_stability(const SweepOptions& options) {
   }
   std::vector<std::optional<SceneDef>> scenes;
   for (const StressScene& s : stress_scenes()) {
+    if (!options.wants_scene(s.name)) continue;
     std::string error;
     scenes.push_back(load_stress_scene(s, &error));
     if (!scenes.back()) result.scene_errors.push_back(error);

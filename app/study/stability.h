@@ -65,7 +65,8 @@ struct StabilityResult {
 
 // quick: each scene until its defining event only (quick_stability_duration), not the
 // time to settle after it.
-// options.methods picks the rows (empty: every method of stability_methods()).
+// options.methods picks the rows (empty: every method of stability_methods()),
+// options.scenes the columns (empty: every stress scene, stress_scenes()).
 StabilityResult run_stability(const SweepOptions& options);
 
 // When a failed run failed, for people: "t = 0.62 s, step 62", or for a method taking

@@ -5,24 +5,13 @@
 
 #include "app/colormap.h"
 #include "app/format_number.h"
-#include "app/study/contact_sheet.h"
+#include "app/study/stability_palette.h"
 
 namespace invfree {
 
 namespace {
 
 constexpr double kWidth = 1920, kHeight = 1080;
-constexpr Rgb kInk{0.10f, 0.10f, 0.12f};
-constexpr Rgb kMuted{0.40f, 0.40f, 0.43f};
-constexpr Rgb kFailFill{0.80f, 0.10f, 0.12f};
-constexpr Rgb kAllowedFill{0.80f, 0.85f, 0.95f};
-constexpr Rgb kNaFill{0.93f, 0.93f, 0.93f};
-constexpr Rgb kWhite{1.0f, 1.0f, 1.0f};
-
-// Black or white text, whichever reads on `fill`.
-Rgb ink_on(Rgb fill) {
-  return 0.30 * fill.r + 0.59 * fill.g + 0.11 * fill.b > 0.55 ? kInk : kWhite;
-}
 
 // The largest size <= `size` at which `text` fits `width`.
 double fitted(const std::string& text, double size, double width) {
@@ -80,7 +69,7 @@ std::unique_ptr<Canvas> stability_summary(const StabilityResult& r, ChartFormat 
   auto canvas = std::make_unique<Canvas>(kWidth, kHeight, format);
   Canvas& img = *canvas;
   const double title_size = fitted(stability_takeaway(r), 52, kWidth - 80);
-  img.text(stability_takeaway(r), kWidth / 2.0, 78, title_size, kInk, Align::Center);
+  img.text(stability_takeaway(r), kWidth / 2.0, 78, title_size, kSheetInk, Align::Center);
   const size_t rows = std::max<size_t>(r.methods.size(), 1),
                cols = std::max<size_t>(r.scenes.size(), 1);
   const double legend_h = 70, header_h = 190, top = 110 + header_h;
@@ -101,22 +90,18 @@ std::unique_ptr<Canvas> stability_summary(const StabilityResult& r, ChartFormat 
     for (size_t i = 0; i < lines.size(); ++i) {
       const double x =
           left + (k + 0.5) * cw + size * (0.35 + 1.15 * (i - 0.5 * (lines.size() - 1)));
-      img.text(lines[i], x, top - 8, fitted(lines[i], size, header_h - 10), kInk, Align::Left,
+      img.text(lines[i], x, top - 8, fitted(lines[i], size, header_h - 10), kSheetInk, Align::Left,
                true);
     }
   }
   const double cell_size = std::min(34.0, ch * 0.42);
   for (size_t m = 0; m < r.methods.size(); ++m) {
     const double y = top + m * ch;
-    img.text(r.methods[m], 30, y + ch / 2.0 + name_size * 0.35, name_size, kInk);
+    img.text(r.methods[m], 30, y + ch / 2.0 + name_size * 0.35, name_size, kSheetInk);
     for (size_t k = 0; k < r.scenes.size(); ++k) {
       const StabilityCell& c = r.at(m, k);
       const CellClass cls = cell_class(c.verdict);
-      const Rgb fill = cls == CellClass::Ok
-                           ? (std::isfinite(c.min_det_f) ? det_f_color(c.min_det_f) : kWhite)
-                       : cls == CellClass::Failed           ? kFailFill
-                       : cls == CellClass::InversionAllowed ? kAllowedFill
-                                                            : kNaFill;
+      const Rgb fill = class_fill(cls, c.min_det_f);
       const double x = left + k * cw;
       img.fill_rect(x + 2, y + 2, x + cw - 2, y + ch - 2, fill);
       const std::string text = summary_cell_text(c);
@@ -126,7 +111,7 @@ std::unique_ptr<Canvas> stability_summary(const StabilityResult& r, ChartFormat 
       const double y0 = y + ch / 2.0 - (lines.size() - 1) * size * 0.6 + size * 0.35;
       for (size_t i = 0; i < lines.size(); ++i)
         img.text(lines[i], x + cw / 2.0, y0 + i * size * 1.2, fitted(lines[i], size, cw - 8),
-                 cls == CellClass::NotApplicable ? kMuted : ink_on(fill), Align::Center);
+                 cls == CellClass::NotApplicable ? kSheetMuted : ink_on(fill), Align::Center);
     }
   }
   // The key, one line under the grid.
@@ -134,16 +119,16 @@ std::unique_ptr<Canvas> stability_summary(const StabilityResult& r, ChartFormat 
   double kx = 30;
   auto key = [&](Rgb fill, const std::string& text) {
     img.fill_rect(kx, ky - ks * 0.8, kx + ks, ky + ks * 0.15, fill);
-    img.stroke_rect(kx, ky - ks * 0.8, kx + ks, ky + ks * 0.15, 1.0, kInk);
-    img.text(text, kx + ks + 10, ky, ks, kInk);
+    img.stroke_rect(kx, ky - ks * 0.8, kx + ks, ky + ks * 0.15, 1.0, kSheetInk);
+    img.text(text, kx + ks + 10, ky, ks, kSheetInk);
     kx += ks + 10 + text_width(text, ks) + 36;
   };
   key(det_f_color(0.3), "ok: its smallest det F over the run");
-  key(kFailFill, "failed");
-  key(kAllowedFill, "inverted, allowed by the model");
-  key(kNaFill, "n/a");
+  key(class_fill(CellClass::Failed, NAN), "failed");
+  key(class_fill(CellClass::InversionAllowed, NAN), "inverted, allowed by the model");
+  key(class_fill(CellClass::NotApplicable, NAN), "n/a");
   img.text(std::string(r.quick ? "quick run; " : "") + "invfree stability", kWidth - 30, ky, 20,
-           kMuted, Align::Right);
+           kSheetMuted, Align::Right);
   return canvas;
 }
 

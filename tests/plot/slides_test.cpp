@@ -3,7 +3,8 @@
 // the points; a study whose errors do not fall with h draws no Pareto front and says so;
 // the stability summary and the contact sheet tell an ok run from another (its smallest
 // det F), an allowed inversion from a failure, and a 64x64 mesh shows its colour, not its
-// edges.
+// edges; the sheet's pages (the one a class sees) are 16:9 with large thumbnails of every
+// run that failed or inverted as allowed and no other, and the sheet's red is the slide's.
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>  // its implementation is in chart_test.cpp
 
@@ -12,6 +13,7 @@
 
 #include "app/plot/chart.h"
 #include "app/study/contact_sheet.h"
+#include "app/study/stability_sheet_pages.h"
 #include "app/study/stability_summary.h"
 #include "app/study/study_chart.h"
 #include "app/study/study_slides.h"
@@ -214,6 +216,111 @@ TEST(StabilitySheet, AFineMeshShowsItsColourNotItsEdges) {
     else
       EXPECT_LT(mean, 250.0) << "an 8x8 mesh still shows its edges";
   }
+}
+
+// A sweep of 3 methods x 7 scenes, 13 of whose runs failed or inverted as allowed: the
+// sheet's pages are 16:9 and show those 13 runs, each once, large, with their method, scene
+// and verdict in large type; no ok or n/a run.
+TEST(StabilitySheetPages, SixteenByNineLargeThumbnailsOfEveryRunThatFailedOrInverted) {
+  StabilityResult r;
+  r.methods = {"lecture", "symplectic-euler", "arap"};
+  r.method_labels = r.methods;
+  for (int k = 0; k < 7; ++k) {
+    r.scenes.push_back("stress-" + std::to_string(k));
+    r.scene_labels.push_back("scene number " + std::to_string(k));
+  }
+  const Mesh mesh = square_mesh(1.0, 4);
+  for (const std::string& m : r.methods)
+    for (int k = 0; k < 7; ++k) {
+      const Verdict v = m == "lecture"            ? (k == 6 ? Verdict::NotApplicable : Verdict::Ok)
+                        : m == "symplectic-euler" ? (k == 0 ? Verdict::BlewUp : Verdict::Penetrated)
+                        : k < 6                   ? Verdict::InvertedAllowed
+                                                  : Verdict::Ok;
+      StabilityCell c = cell(m, v, 0.5);
+      c.scene = r.scenes[k];
+      c.frame.mesh.triangles = mesh.triangles;
+      c.frame.x.resize(2 * mesh.node_count());
+      for (int i = 0; i < mesh.node_count(); ++i) c.frame.x.segment<2>(2 * i) = mesh.rest[i];
+      c.frame.det_f.assign(mesh.triangles.size(), 0.8);
+      c.frame.has_ground = true;
+      c.frame.ground_y = -0.5;
+      r.cells.push_back(c);
+    }
+  const std::vector<const StabilityCell*> expected = sheet_runs(r);
+  ASSERT_EQ(expected.size(), 13u);
+  const auto pages = stability_sheet_pages(r, ChartFormat::Svg);
+  ASSERT_EQ(pages.size(), (13 + kSheetRunsPerPage - 1) / kSheetRunsPerPage);
+  std::vector<const StabilityCell*> shown;
+  for (const SheetPage& page : pages) {
+    EXPECT_EQ(page.canvas->width(), 1920);
+    EXPECT_EQ(page.canvas->height(), 1080);
+    EXPECT_TRUE(has_text(*page.canvas, page.title));
+    for (size_t i = 0; i < page.thumbs.size(); ++i) {
+      const SheetThumb& t = page.thumbs[i];
+      shown.push_back(t.cell);
+      EXPECT_GE(t.x1 - t.x0, 400) << "a thumbnail a class can see";
+      EXPECT_GE(t.y1 - t.y0, 250);
+      EXPECT_GE(t.x0, 0);
+      EXPECT_GE(t.y0, 0);
+      EXPECT_LE(t.x1, 1920);
+      EXPECT_LE(t.y1, 1080);
+      for (size_t j = 0; j < i; ++j) {
+        const SheetThumb& o = page.thumbs[j];
+        EXPECT_TRUE(t.x0 >= o.x1 || o.x0 >= t.x1 || t.y0 >= o.y1 || o.y0 >= t.y1)
+            << "thumbnails " << j << " and " << i << " overlap";
+      }
+      // Its method, scene and verdict under it, in large type.
+      const std::string label = r.scene_labels[t.cell->scene.back() - '0'];
+      for (const std::string& words : {t.cell->method, label, sheet_verdict_text(*t.cell)}) {
+        bool found = false;
+        for (const TextItem& item : page.canvas->texts())
+          if (item.text == words && item.y0 >= t.y1 && item.y0 < t.y1 + 150 && item.x0 >= t.x0 &&
+              item.x1 <= t.x1) {
+            found = true;
+            EXPECT_GE(item.y1 - item.y0, 24.0) << words << ": large type";
+          }
+        EXPECT_TRUE(found) << words << " under its thumbnail";
+      }
+    }
+  }
+  EXPECT_EQ(shown, expected) << "every run that failed or inverted, each once, in table order";
+  for (const StabilityCell* c : shown)
+    EXPECT_TRUE(cell_class(c->verdict) == CellClass::Failed ||
+                cell_class(c->verdict) == CellClass::InversionAllowed);
+  EXPECT_EQ(sheet_verdict_text(*expected[0]), "blew-up at t = 0.36 s");
+  EXPECT_EQ(pages[0].title,
+            "symplectic-euler fails on 7 of 7; arap inverts on 6 of 7, as its model allows");
+  EXPECT_TRUE(has_text(*pages[0].canvas, "Not shown: 7 ok runs, 1 n/a"));
+
+  // Nothing failed: one page that says so.
+  StabilityResult calm = r;
+  for (StabilityCell& c : calm.cells)
+    if (c.verdict != Verdict::NotApplicable) c.verdict = Verdict::Ok;
+  const auto calm_pages = stability_sheet_pages(calm, ChartFormat::Svg);
+  ASSERT_EQ(calm_pages.size(), 1u);
+  EXPECT_TRUE(calm_pages[0].thumbs.empty());
+  EXPECT_EQ(calm_pages[0].title, "Every method is ok on every scene it can start");
+}
+
+// One palette (app/study/stability_palette.h): the red that frames a failed run on the
+// sheet is the red that fills a failed cell on the slide.
+TEST(StabilitySheetPages, TheSheetsRedIsTheSlidesRed) {
+  const auto summary = stability_summary(small_sheet(), ChartFormat::Png);
+  const std::string png = summary->finish();
+  int w = 0, h = 0, c = 0;
+  unsigned char* data = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                                              static_cast<int>(png.size()), &w, &h, &c, 3);
+  ASSERT_NE(data, nullptr);
+  const Rgb red = cell_class_color(CellClass::Failed);
+  const int want[3] = {static_cast<int>(std::lround(255 * red.r)),
+                       static_cast<int>(std::lround(255 * red.g)),
+                       static_cast<int>(std::lround(255 * red.b))};
+  long count = 0;
+  for (int i = 0; i < w * h; ++i)
+    count += std::abs(data[3 * i] - want[0]) <= 1 && std::abs(data[3 * i + 1] - want[1]) <= 1 &&
+             std::abs(data[3 * i + 2] - want[2]) <= 1;
+  stbi_image_free(data);
+  EXPECT_GT(count, 10000) << "the slide's two failed cells are filled with the sheet's red";
 }
 
 }  // namespace

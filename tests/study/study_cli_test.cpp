@@ -157,8 +157,9 @@ TEST(StabilityCommand, QuickSweepClassifiesEveryCell) {
   const fs::path dir = fresh_dir("stability");
   const CliRun r = run("stability --quick --quiet --slides --out " + dir.string(), dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(is_png(dir / "stability.png"));
+  EXPECT_TRUE(is_png(dir / "stability-sheet-1.png"));
   EXPECT_TRUE(is_png(dir / "stability-slide.png"));
+  EXPECT_FALSE(fs::exists(dir / "stability.png")) << "the full sheet only with --full-sheet";
   const std::string md = slurp(dir / "stability.md");
   EXPECT_NE(md.find("| method |"), std::string::npos);
   EXPECT_NE(md.find("**A quick run**"), std::string::npos) << "the table says it was quick";
@@ -223,6 +224,56 @@ TEST(StabilityCommand, QuickSweepClassifiesEveryCell) {
   EXPECT_EQ(rows.back()[0], "chapter-0-explicit-h0.03");
   EXPECT_NE(rows.back()[2], "ok");
   EXPECT_GT(failures, 0) << "the stress scenes must break some method";
+  fs::remove_all(dir);
+}
+
+// The width and height in a PNG's header.
+std::pair<int, int> png_size(const fs::path& p) {
+  const std::string s = slurp(p);
+  if (s.size() < 24) return {0, 0};
+  auto be32 = [&](size_t at) {
+    return (static_cast<unsigned char>(s[at]) << 24) | (static_cast<unsigned char>(s[at + 1]) << 16) |
+           (static_cast<unsigned char>(s[at + 2]) << 8) | static_cast<unsigned char>(s[at + 3]);
+  };
+  return {be32(16), be32(20)};
+}
+
+// A lecture's subset (--methods, --scenes): only those runs, the sheet's 16:9 page of the
+// runs that failed (symplectic Euler's two), the full sheet only on request, an unknown
+// scene refused in one line, and a page an earlier run left beyond the new last one
+// refused without --force and removed with it.
+TEST(StabilityCommand, ASubsetWritesTheSheetsPagesForAClass) {
+  const fs::path dir = fresh_dir("sheet");
+  const std::string subset = "stability --quick --quiet --methods lecture,symplectic-euler "
+                             "--scenes stress-h0.1,stress-soft --out " + dir.string();
+  CliRun r = run(subset, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_TRUE(is_png(dir / "stability-sheet-1.png"));
+  EXPECT_EQ(png_size(dir / "stability-sheet-1.png"), std::make_pair(1920, 1080));
+  EXPECT_FALSE(fs::exists(dir / "stability-sheet-2.png"));
+  EXPECT_FALSE(fs::exists(dir / "stability.png"));
+  const auto rows = read_csv(dir / "stability.csv");
+  ASSERT_EQ(rows.size(), 1u + 2 * 2 + explicit_rows().size());
+  for (size_t i = 1; i + explicit_rows().size() < rows.size(); ++i) {
+    EXPECT_TRUE(rows[i][0] == "lecture" || rows[i][0] == "symplectic-euler") << rows[i][0];
+    EXPECT_TRUE(rows[i][1] == "stress-h0.1" || rows[i][1] == "stress-soft") << rows[i][1];
+    EXPECT_EQ(rows[i][2] == "ok", rows[i][0] == "lecture") << rows[i][0] << " " << rows[i][1];
+  }
+  // An earlier run's third page: refused, then removed with --force; --full-sheet adds
+  // the sheet of every run.
+  std::ofstream(dir / "stability-sheet-3.png") << "old";
+  r = run(subset, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("exists; use --force"), std::string::npos) << r.err;
+  r = run(subset + " --force --full-sheet", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "stability-sheet-3.png"));
+  EXPECT_TRUE(is_png(dir / "stability-sheet-1.png"));
+  EXPECT_TRUE(is_png(dir / "stability.png"));
+  r = run("stability --quick --scenes stress-soft,nope --out " + dir.string(), dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--scenes: unknown scene 'nope'"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   fs::remove_all(dir);
 }
 
