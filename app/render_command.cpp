@@ -118,8 +118,9 @@ class SimulationThread {
  public:
   // frames: the number to make, or with `until_settled` the most (see kSettledHold).
   SimulationThread(Simulation& sim, int frames, int steps_per_frame, bool until_settled,
-                   const render::CaptureOptions& capture)
-      : sim_(sim),
+                   const render::CaptureOptions& capture, std::mutex* core_lock = nullptr)
+      : core_lock_(core_lock),
+        sim_(sim),
         frames_(frames),
         steps_per_frame_(steps_per_frame),
         until_settled_(until_settled),
@@ -158,38 +159,57 @@ class SimulationThread {
  private:
   void run() {
     pthread_setname_np(pthread_self(), "invfree-sim");  // for top and perf
-    measure_det_f();
+    {
+      const auto core = lock_core();
+      measure_det_f();
+    }
     const double size = body_size();
     for (int f = 0; f < frames_; ++f) {
-      if (f > 0) {
-        const VecX x_before = sim_.x;
-        const double ceiling_before = sim_.ceiling_nominal, t_before = sim_.time;
-        for (int k = 0; k < steps_per_frame_; ++k) {
-          if (interrupted() || stopping_) return finish();
-          const StepReport r = step(sim_);
-          if (r.status != StepStatus::Ok) {
-            failure_ = r;
-            // The last good state once more, marked as failed in the picture.
-            render::FrameState state = render::capture_frame_state(sim_, nullptr, capture_);
-            state.failure = "step " + std::to_string(sim_.step_count + 1) + " failed: " +
-                            step_status_name(r.status) + ": " + r.message;
-            push(std::move(state));
-            return finish();
+      render::FrameState state;
+      {
+        const auto core = lock_core();  // (released before push, which may wait for the reader)
+        if (f > 0) {
+          const VecX x_before = sim_.x;
+          const double ceiling_before = sim_.ceiling_nominal, t_before = sim_.time;
+          for (int k = 0; k < steps_per_frame_; ++k) {
+            if (interrupted() || stopping_) return finish();
+            const StepReport r = step(sim_);
+            if (r.status != StepStatus::Ok) {
+              failure_ = r;
+              // The last good state once more, marked as failed in the picture.
+              state = render::capture_frame_state(sim_, nullptr, capture_);
+              state.failure = "step " + std::to_string(sim_.step_count + 1) + " failed: " +
+                              step_status_name(r.status) + ": " + r.message;
+              break;
+            }
+            measure_det_f();
           }
-          measure_det_f();
+          if (state.failure.empty()) {  // (a failed frame is pushed below, unlocked)
+            const double dt = sim_.time - t_before;
+            const double speed = dt > 0.0 ? max_node_move(x_before, sim_.x) / dt : 0.0;
+            const bool still =
+                speed < kSettledSpeed * size && sim_.ceiling_nominal == ceiling_before;
+            if (!still) settled_since_ = std::numeric_limits<double>::quiet_NaN();
+            else if (std::isnan(settled_since_)) settled_since_ = t_before;
+          }
         }
-        const double dt = sim_.time - t_before;
-        const double speed = dt > 0.0 ? max_node_move(x_before, sim_.x) / dt : 0.0;
-        const bool still = speed < kSettledSpeed * size && sim_.ceiling_nominal == ceiling_before;
-        if (!still) settled_since_ = std::numeric_limits<double>::quiet_NaN();
-        else if (std::isnan(settled_since_)) settled_since_ = t_before;
+        if (state.failure.empty()) state = render::capture_frame_state(sim_, nullptr, capture_);
       }
-      if (!push(render::capture_frame_state(sim_, nullptr, capture_))) break;
+      if (!state.failure.empty()) {
+        push(std::move(state));
+        return finish();
+      }
+      if (!push(std::move(state))) break;
       if (until_settled_ && !std::isnan(settled_since_) &&
           sim_.time - settled_since_ >= kSettledHold - 1e-9)
         break;
     }
     finish();
+  }
+  // The core's thread pool (core/linalg/parallel.h) takes one caller at a time: runs side by
+  // side (--compare) share `core_lock`, so only one of them steps at a time.
+  std::unique_lock<std::mutex> lock_core() {
+    return core_lock_ ? std::unique_lock<std::mutex>(*core_lock_) : std::unique_lock<std::mutex>();
   }
   bool push(render::FrameState state) {
     std::unique_lock lock(mutex_);
@@ -228,6 +248,7 @@ class SimulationThread {
   }
 
   static constexpr size_t kCapacity = 2;
+  std::mutex* const core_lock_;
   Simulation& sim_;
   const int frames_, steps_per_frame_;
   const bool until_settled_;
@@ -341,10 +362,11 @@ RenderedFrames render_frames(const std::vector<RenderRun>& runs, render::Rendere
                          : opt.frames;
   Progress progress(frames);
   RenderedFrames out;
+  std::mutex core_lock;  // one run steps at a time (SimulationThread::lock_core)
   std::vector<std::unique_ptr<SimulationThread>> producers;
   for (const RenderRun& r : runs)
-    producers.push_back(std::make_unique<SimulationThread>(*r.sim, frames, r.steps_per_frame,
-                                                           until_settled, capture));
+    producers.push_back(std::make_unique<SimulationThread>(
+        *r.sim, frames, r.steps_per_frame, until_settled, capture, n > 1 ? &core_lock : nullptr));
   // Each run's frame as drawn (its paths' overlays added): a run that has ended is drawn
   // from it again.
   std::vector<render::FrameState> shown(n);
