@@ -68,7 +68,12 @@ void AutoFitView::update(const LiveController& lc, const render::PixelRect& visi
   if (lc.mesh_generation() != mesh_generation_) return fit(lc, visible);
   if (!follows()) return;
   if (lc.restarts() != restarts_) return fit(lc, visible);
-  if (!lc.pulling()) follow_step(lc, visible);
+  if (lc.pulling()) return;
+  // Paused, the view goes straight to the bodies: a still picture is the same whenever it is
+  // drawn (the easing of a run played frame by frame would leave it wherever the frames
+  // between two Step clicks had got it).
+  if (!lc.playing()) camera_.last.reset();
+  follow_step(lc, visible);
 }
 
 void AutoFitView::set_size(int width, int height) {

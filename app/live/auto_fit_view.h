@@ -34,7 +34,8 @@ class AutoFitView {
   void refit(const LiveController& lc, const render::PixelRect& visible);
   // Each frame: the default view when the scene or its mesh is not the one last fitted (even
   // after the user chose a view), and the follow camera's next step (not while a node is
-  // grabbed: the cursor's world point stays put under the hand).
+  // grabbed: the cursor's world point stays put under the hand; paused, straight to the
+  // bodies).
   void update(const LiveController& lc, const render::PixelRect& visible);
 
   void set_size(int width, int height);  // the framebuffer's, pixels
