@@ -105,6 +105,13 @@ void ThreadPool::worker_loop() {
   }
 }
 
+bool ThreadPool::try_run(int tasks, TaskFn call, void* ctx) {
+  if (busy_.exchange(true, std::memory_order_acquire)) return false;
+  run_impl(tasks, call, ctx);
+  busy_.store(false, std::memory_order_release);
+  return true;
+}
+
 void ThreadPool::run_impl(int tasks, TaskFn call, void* ctx) {
   call_ = call;
   ctx_ = ctx;

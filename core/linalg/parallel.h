@@ -7,7 +7,9 @@
 //
 // Workers spin briefly (a few microseconds: Newton's parallel phases come in quick
 // succession) and then sleep on a futex, so an idle pool costs no CPU. One process-wide
-// pool is shared by every simulation. Its size is a setting, `set_thread_count`, never
+// pool is shared by every simulation; a run that finds it busy with another thread's run
+// (two simulations stepping at once: render --compare, Python threads) does its tasks on
+// its own thread, which gives the same bits, instead of waiting or racing for it. Its size is a setting, `set_thread_count`, never
 // read from the environment: the program decides (the command line reads INVFREE_THREADS,
 // app/main.cpp; tests and benchmarks set their own).
 #pragma once
@@ -31,22 +33,25 @@ class ThreadPool {
   int size() const { return static_cast<int>(workers_.size()) + 1; }
 
   // Calls fn(task) for every task in [0, tasks) (at most 65535 per run, else they run
-  // inline). Not re-entrant: tasks must not call run.
+  // inline). Safe to call from several threads at once: one run has the workers, the
+  // others run inline. Not re-entrant: tasks must not call run.
   template <class Fn>
   void run(int tasks, Fn&& fn) {
     if (tasks <= 0) return;
-    if (tasks == 1 || workers_.empty() || tasks > 0xffff) {
-      for (int t = 0; t < tasks; ++t) fn(t);
-      return;
+    if (tasks > 1 && !workers_.empty() && tasks <= 0xffff) {
+      using F = std::remove_reference_t<Fn>;
+      if (try_run(
+              tasks, [](void* ctx, int t) { (*static_cast<F*>(ctx))(t); },
+              const_cast<void*>(static_cast<const void*>(&fn))))
+        return;
     }
-    using F = std::remove_reference_t<Fn>;
-    run_impl(
-        tasks, [](void* ctx, int t) { (*static_cast<F*>(ctx))(t); },
-        const_cast<void*>(static_cast<const void*>(&fn)));
+    for (int t = 0; t < tasks; ++t) fn(t);
   }
 
  private:
   using TaskFn = void (*)(void*, int);
+  // The run on the workers, unless another thread's run has them (false: nothing ran).
+  bool try_run(int tasks, TaskFn call, void* ctx);
   void run_impl(int tasks, TaskFn call, void* ctx);
   void worker_loop();
   // Claims and runs tasks of the current run until none is left.
@@ -63,6 +68,7 @@ class ThreadPool {
   TaskFn call_ = nullptr;
   void* ctx_ = nullptr;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> busy_{false};  // a run has the workers (try_run)
 };
 
 // Fixed split of n items into blocks of at least `min_block` and at most `max_blocks`

@@ -173,6 +173,32 @@ TEST(ParallelAssembly, SelfContactFoldBitIdenticalForAnyThreadCount) {
   EXPECT_GT((one - without).lpNorm<Eigen::Infinity>(), 1e-6);
 }
 
+// Two simulations stepping at the same time on two threads share the one pool (render
+// --compare's two runs, Python threads with the GIL released): each gets the bits it gets
+// alone. Before the pool took one run at a time (the other inline), the second caller
+// overwrote the first's run and both waited for each other's tasks for ever.
+TEST(ThreadPool, TwoSimulationsSteppingAtOnceGetTheirOwnBits) {
+  set_thread_count(2);
+  auto run = [](int n_seg) {
+    SceneDef s = *load_builtin_scene("compress").scene;
+    s.n_seg = n_seg;  // >= 2,048 triangles: parallel assembly, products and LDL^T levels
+    Simulation sim = make_simulation(s);
+    for (int k = 0; k < 120; ++k)
+      if (step(sim).status != StepStatus::Ok) break;
+    return sim.x;
+  };
+  const VecX alone_a = run(40), alone_b = run(36);
+  VecX a, b;
+  for (int round = 0; round < 3; ++round) {
+    std::thread other([&] { b = run(36); });
+    a = run(40);
+    other.join();
+    EXPECT_TRUE(same_bits(a, alone_a)) << "round " << round;
+    EXPECT_TRUE(same_bits(b, alone_b)) << "round " << round;
+  }
+  set_thread_count(0);
+}
+
 // INVFREE_THREADS is the command line's (app/main.cpp): the core never reads it.
 TEST(ThreadPool, SizedByItsSettingAlone) {
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
