@@ -206,8 +206,9 @@ class SimulationThread {
     }
     finish();
   }
-  // The core's thread pool (core/linalg/parallel.h) takes one caller at a time: runs side by
-  // side (--compare) share `core_lock`, so only one of them steps at a time.
+  // Runs side by side (--compare) share `core_lock` and step one at a time, so each has the
+  // core's thread pool to itself (core/linalg/parallel.h: a caller that finds it busy runs
+  // its tasks on its own thread); the frames wait for the slower run either way.
   std::unique_lock<std::mutex> lock_core() {
     return core_lock_ ? std::unique_lock<std::mutex>(*core_lock_) : std::unique_lock<std::mutex>();
   }
