@@ -158,6 +158,196 @@ inline void supernode_forward(int j0, int j1, const int* rows, int count, int sp
   }
 }
 
+// Supernodes at least this wide are solved as dense blocks (dense_forward,
+// dense_backward); narrower ones, whose rows below a block of kBlock columns are touched
+// once per solve anyway, by indexed updates (supernode_forward, narrow_backward).
+constexpr int kDenseMinWidth = kBlock + 1;
+
+// A supernode [j0, j1] (w columns, m rows below j1) as a dense trapezoid: column j's
+// entries lx[lp[j] ..] are rows j + 1 .. j1 and then the m rows below, contiguous, so with
+// the supernode's part of the solution in a contiguous z (its own w rows, then the m rows
+// below), column j0 + k multiplies z[k + 1 ..] without any index. The columns go in blocks
+// of W <= 4 from j0 (the last block the remainder): a block's small triangle, then every
+// row below it in one pass over z with the W columns' values in registers. Each sum's
+// order is fixed by the supernode, and the passes are independent across rows, so they
+// vectorise without reordering anything.
+
+// The rows of a block's pass come in chunks of kChunk; each chunk first prefetches the
+// next kChunk * W entries that the solve reads after this block (the next block's
+// columns: the factor is read in column order forwards, backwards in reverse), since a
+// column of a few hundred entries is too short for the hardware prefetcher to catch up.
+constexpr int kChunk = 16;
+template <class T>
+inline void prefetch_span(const T* p, int entries) {
+  for (int q = 0; q < entries; q += 64 / static_cast<int>(sizeof(T))) __builtin_prefetch(p + q);
+}
+
+// Forward, block [c, c + W) at z[k ..] (k = c - j0), `len` the rows of z after the block.
+template <int W, class T>
+inline void dense_forward_block(int c, int k, int len, const int* lp, const T* lx,
+                                double* __restrict z) {
+  double zc[W];
+  const T* __restrict v[W];
+#pragma GCC unroll 4
+  for (int a = 0; a < W; ++a) {
+    zc[a] = z[k + a];
+#pragma GCC unroll 4
+    for (int b = a + 1; b < W; ++b) z[k + b] -= lx[lp[c + a] + (b - a - 1)] * zc[a];
+    v[a] = lx + lp[c + a] + (W - 1 - a);
+  }
+  double* __restrict rest = z + k + W;
+  const T* next = lx + lp[c + W];
+  for (int r0 = 0; r0 < len; r0 += kChunk) {
+    prefetch_span(next + r0 * W, kChunk * W);
+    const int r1 = std::min(len, r0 + kChunk);
+    for (int r = r0; r < r1; ++r) {
+      double t = rest[r];
+#pragma GCC unroll 4
+      for (int a = 0; a < W; ++a) t -= v[a][r] * zc[a];
+      rest[r] = t;
+    }
+  }
+}
+
+// Forward, L y = b, on the supernode [j0, j1]: z = (y[j0 .. j1], 0 for the rows below),
+// the blocks, y[j0 .. j1] = z's first w, and one scatter of z's rows below: y[rows[r]] for
+// the first `split`, the task's accumulator slots for the rest.
+template <class T>
+void dense_forward(int j0, int j1, const int* rows, int m, int split, const int* lp, const T* lx,
+                   double* y, double* acc, const int* slots, double* __restrict z) {
+  const int w = j1 - j0 + 1;
+  std::copy(y + j0, y + j1 + 1, z);
+  std::fill(z + w, z + w + m, 0.0);
+  for (int c = j0; c <= j1; c += kBlock) {
+    const int k = c - j0;
+    switch (std::min(kBlock, j1 - c + 1)) {
+      case 1:
+        dense_forward_block<1>(c, k, w + m - k - 1, lp, lx, z);
+        break;
+      case 2:
+        dense_forward_block<2>(c, k, w + m - k - 2, lp, lx, z);
+        break;
+      case 3:
+        dense_forward_block<3>(c, k, w + m - k - 3, lp, lx, z);
+        break;
+      default:
+        dense_forward_block<kBlock>(c, k, w + m - k - kBlock, lp, lx, z);
+    }
+  }
+  std::copy(z, z + w, y + j0);
+  const double* below = z + w;
+  for (int r = 0; r < split; ++r) y[rows[r]] += below[r];
+  for (int r = split; r < m; ++r) acc[slots[r - split]] += below[r];
+}
+
+// Backward, block [c, c + W) at z[k ..], every row after it solved: each column's dot
+// product with the `len` rows after the block (two interleaved partial sums per column,
+// the W columns in one pass), then the block's triangle from its last column down.
+template <int W, class T>
+inline void dense_backward_block(int c, int k, int len, const int* lp, const T* lx, const double* d,
+                                 double* __restrict z) {
+  const T* __restrict v[W];
+  double s[W][2];
+#pragma GCC unroll 4
+  for (int a = 0; a < W; ++a) {
+    v[a] = lx + lp[c + a] + (W - 1 - a);
+    s[a][0] = s[a][1] = 0.0;
+  }
+  const double* __restrict rest = z + k + W;
+  // What the solve reads next: the entries before this block's, downwards.
+  const long before = lp[c];
+  int r0 = 0;
+  for (; r0 + kChunk <= len; r0 += kChunk) {
+    prefetch_span(lx + std::max(0L, before - static_cast<long>(r0 + kChunk) * W), kChunk * W);
+    for (int r = r0; r < r0 + kChunk; r += 2) {
+#pragma GCC unroll 4
+      for (int a = 0; a < W; ++a) {
+#pragma GCC unroll 2
+        for (int l = 0; l < 2; ++l) s[a][l] += v[a][r + l] * rest[r + l];
+      }
+    }
+  }
+  for (int r = r0; r < len; ++r) {
+#pragma GCC unroll 4
+    for (int a = 0; a < W; ++a) s[a][r & 1] += v[a][r] * rest[r];
+  }
+#pragma GCC unroll 4
+  for (int a = W - 1; a >= 0; --a) {
+    double sum = s[a][0] + s[a][1];
+#pragma GCC unroll 4
+    for (int b = a + 1; b < W; ++b) sum += lx[lp[c + a] + (b - a - 1)] * z[k + b];
+    z[k + a] = z[k + a] / d[c + a] - sum;
+  }
+}
+
+// Backward, D L^T x = y, on the supernode [j0, j1]: z = (y[j0 .. j1], x[rows]) (one
+// gather), the blocks from the last down, x[j0 .. j1] = z's first w.
+template <class T>
+void dense_backward(int j0, int j1, const int* rows, int m, const int* lp, const T* lx,
+                    const double* d, double* y, double* __restrict z) {
+  const int w = j1 - j0 + 1;
+  std::copy(y + j0, y + j1 + 1, z);
+  for (int r = 0; r < m; ++r) z[w + r] = y[rows[r]];
+  const int tail = (w - 1) % kBlock + 1;  // the last block's width
+  for (int c = j1 + 1 - tail; c >= j0; c -= kBlock) {
+    const int k = c - j0;
+    switch (c + kBlock - 1 > j1 ? tail : kBlock) {
+      case 1:
+        dense_backward_block<1>(c, k, w + m - k - 1, lp, lx, d, z);
+        break;
+      case 2:
+        dense_backward_block<2>(c, k, w + m - k - 2, lp, lx, d, z);
+        break;
+      case 3:
+        dense_backward_block<3>(c, k, w + m - k - 3, lp, lx, d, z);
+        break;
+      default:
+        dense_backward_block<kBlock>(c, k, w + m - k - kBlock, lp, lx, d, z);
+    }
+  }
+  std::copy(z, z + w, y + j0);
+}
+
+// Backward on a narrow supernode [j0, j0 + W) (W <= kBlock): each row below is gathered
+// once for all W columns' dot products (two interleaved partial sums per column; one
+// column alone takes column_dot's four), then the triangle from the last column down.
+template <int W, class T>
+inline void narrow_backward(int j0, const int* rows, int m, const int* lp, const T* lx,
+                            const double* d, double* y) {
+  if constexpr (W == 1) {
+    y[j0] = y[j0] / d[j0] - column_dot(m, rows, lx + lp[j0], y);
+  } else {
+    const T* __restrict v[W];
+    double s0[W], s1[W];
+#pragma GCC unroll 4
+    for (int a = 0; a < W; ++a) {
+      v[a] = lx + lp[j0 + a] + (W - 1 - a);
+      s0[a] = s1[a] = 0.0;
+    }
+    int r = 0;
+    for (; r + 2 <= m; r += 2) {
+      const double x0 = y[rows[r]], x1 = y[rows[r + 1]];
+#pragma GCC unroll 4
+      for (int a = 0; a < W; ++a) {
+        s0[a] += v[a][r] * x0;
+        s1[a] += v[a][r + 1] * x1;
+      }
+    }
+    if (r < m) {
+      const double x0 = y[rows[r]];
+#pragma GCC unroll 4
+      for (int a = 0; a < W; ++a) s0[a] += v[a][r] * x0;
+    }
+#pragma GCC unroll 4
+    for (int a = W - 1; a >= 0; --a) {
+      double s = s0[a] + s1[a];
+#pragma GCC unroll 4
+      for (int b = a + 1; b < W; ++b) s += lx[lp[j0 + a] + (b - a - 1)] * y[j0 + b];
+      y[j0 + a] = y[j0 + a] / d[j0 + a] - s;
+    }
+  }
+}
+
 }  // namespace
 
 void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
@@ -250,6 +440,7 @@ void SparseLdlt::share_row_indices() {
   solve_rows_.clear();
   solve_row_begin_.assign(n, 0);
   snode_last_.assign(n, 0);
+  snode_first_.assign(n, 0);
   // Chains do not cross from one task into another (the forward solve handles a
   // supernode at once, and two tasks are solved at different times).
   for (int first = 0; first < n;) {
@@ -262,6 +453,7 @@ void SparseLdlt::share_row_indices() {
     for (int j = first; j <= last; ++j) {
       solve_row_begin_[j] = base + (j - first);
       snode_last_[j] = last;
+      snode_first_[j] = first;
     }
     first = last + 1;
   }
@@ -466,6 +658,20 @@ void SparseLdlt::plan_accumulators() {
   }
   acc_begin_[tasks] = slots;
   acc_.assign(slots, 0.0);
+  // Each task's scratch for its dense supernodes: the rows below (t) and the columns' dot
+  // products, sized for its largest.
+  dense_begin_.assign(tasks + 1, 0);
+  for (int task = 0; task < tasks; ++task) {
+    int need = 0;
+    for (int r = range_begin_[task]; r < range_begin_[task + 1]; ++r)
+      for (int j = ranges_[r].first; j < ranges_[r].second; j = snode_last_[j] + 1) {
+        const int last = snode_last_[j];
+        if (last - j + 1 >= kDenseMinWidth)
+          need = std::max(need, lp_[last + 1] - lp_[last] + last - j + 1);
+      }
+    dense_begin_[task + 1] = dense_begin_[task] + need;
+  }
+  dense_scratch_.assign(dense_begin_[tasks], 0.0);
   gather_begin_.assign(n + 1, 0);
   gather_slots_.clear();
   for (int j = 0; j < n; ++j) {
@@ -625,26 +831,50 @@ void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
           for (int g = gb[j]; g < gb[j + 1]; ++g) v += acc[gs[g]];
           y[j] = v;
         }
+      double* scratch = dense_scratch_.data() + dense_begin_[task];
       for (int r = range_begin_[task]; r < range_begin_[task + 1]; ++r)
         for (int j = ranges_[r].first; j < ranges_[r].second; j = snode_last_[j] + 1) {
           const int last = snode_last_[j];
-          supernode_forward(j, last, sr + sb[last], lp[last + 1] - lp[last],
-                            split_[last] - lp[last], lp, lx, y, acc,
-                            ext_slots_.data() + ext_base_[last]);
+          const int m = lp[last + 1] - lp[last], split = split_[last] - lp[last];
+          const int* slots = ext_slots_.data() + ext_base_[last];
+          if (last - j + 1 >= kDenseMinWidth)
+            dense_forward(j, last, sr + sb[last], m, split, lp, lx, y, acc, slots, scratch);
+          else
+            supernode_forward(j, last, sr + sb[last], m, split, lp, lx, y, acc, slots);
         }
     });
   }
-  // Backward: D L^T x = y, the levels top down, each column a dot product in
-  // column_dot's fixed order. (Summing a supernode block's dot products in one pass, as
-  // the forward solve's updates are, would be faster but changes the rounding, and n_seg
-  // 256's fold steps are sensitive to rounding: see docs/performance.md.)
+  // Backward: D L^T x = y, the levels top down; a wide supernode as a dense block
+  // (dense_backward), a narrow one a dot product per column in column_dot's fixed order.
   for (int l = levels; l-- > 0;) {
     const int first = level_begin_[l];
     thread_pool().run(level_begin_[l + 1] - first, [&](int k) {
       const int task = first + k;
+      double* scratch = dense_scratch_.data() + dense_begin_[task];
       for (int r = range_begin_[task + 1]; r-- > range_begin_[task];)
-        for (int j = ranges_[r].second; j-- > ranges_[r].first;)
-          y[j] = y[j] / d[j] - column_dot(lp[j + 1] - lp[j], sr + sb[j], lx + lp[j], y);
+        for (int last = ranges_[r].second - 1; last >= ranges_[r].first;) {
+          const int j0 = snode_first_[last];
+          const int* rows = sr + sb[last];
+          const int m = lp[last + 1] - lp[last];
+          if (last - j0 + 1 >= kDenseMinWidth) {
+            dense_backward(j0, last, rows, m, lp, lx, d, y, scratch);
+          } else {
+            switch (last - j0 + 1) {
+              case 1:
+                narrow_backward<1>(j0, rows, m, lp, lx, d, y);
+                break;
+              case 2:
+                narrow_backward<2>(j0, rows, m, lp, lx, d, y);
+                break;
+              case 3:
+                narrow_backward<3>(j0, rows, m, lp, lx, d, y);
+                break;
+              default:
+                narrow_backward<kBlock>(j0, rows, m, lp, lx, d, y);
+            }
+          }
+          last = j0 - 1;
+        }
     });
   }
   for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];

@@ -21,11 +21,15 @@
 // solves); `invfree_bench --benchmark_filter=LdltSolve` prints both ratios
 // (tree_parallelism below).
 //
-// The solves, which PCG repeats many times per factorisation and which are bound by
-// memory traffic, read one list of row indices per fundamental supernode instead of one
-// per column, and the forward solve works on blocks of up to four of a supernode's
-// columns, reading and writing each row below a block once. The values and the order of
-// every operation within a task are those of a column-by-column solve.
+// The solves, which PCG repeats many times per factorisation, read one list of row
+// indices per fundamental supernode. A supernode of five or more columns is a dense
+// trapezoid (its columns contiguous in L): the forward solve copies its rows and zeros
+// for the rows below into a contiguous buffer, updates it in blocks of four columns
+// (vectorised passes, no indices) and scatters the rows below once into y and the task's
+// accumulator slots; the backward solve gathers the rows below once and takes every
+// column's dot product with the buffer. Narrower supernodes update the rows below a block
+// of up to four columns directly, reading each once. Each sum's order is fixed by the
+// supernodes and `parts`, so the solve stays bit-identical for any thread count.
 //
 // Inputs: the full symmetric pattern (CSC, both triangles, sorted) and a fill-reducing
 // ordering; then values on that same pattern. No allocation after `analyze` (unless the
@@ -128,7 +132,10 @@ class SparseLdlt {
   // The solves' row indices: column j's are solve_rows_[solve_row_begin_[j] ..], one list
   // per supernode (share_row_indices).
   std::vector<int> solve_rows_, solve_row_begin_;
-  std::vector<int> snode_last_;  // per column: the last column of its supernode
+  std::vector<int> snode_first_, snode_last_;  // per column: its supernode's first and last
+  // Each task's scratch for its dense supernodes (solve_with): dense_scratch_[dense_begin_[t] ..].
+  std::vector<int> dense_begin_;
+  std::vector<double> dense_scratch_;
   VecX work_;
   double factor_flops_ = 0.0, solve_flops_ = 0.0, serial_fraction_ = 0.0;
 };
