@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
+#include <algorithm>
 #include <Eigen/SparseCholesky>
 #include <cstring>
 #include <limits>
@@ -89,6 +91,73 @@ TEST(SparseLdlt, SolvesSupernodesOfEveryWidth) {
   ldlt.solve(b, x);
   EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm());
   EXPECT_LT((a * x - b).norm(), 1e-12 * b.norm());
+}
+
+// Dense leaf blocks of widths 1 to 13 (each a supernode), every one coupled to some rows of
+// two separators above it (rows below in the same task and in others, by `parts`): the
+// dense solve's triangle, its rows below, the split and the accumulator slots.
+SpMat block_tree_matrix(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<int> widths;
+  for (int w = 1; w <= 13; ++w) widths.push_back(w);
+  std::shuffle(widths.begin(), widths.end(), rng);
+  int leaves = 0;
+  for (int w : widths) leaves += w;
+  const int mid = 11, top = 7, n = leaves + 2 * mid + top;
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+  int first = 0;
+  for (std::size_t b = 0; b < widths.size(); ++b) {
+    const int sep = leaves + (b < widths.size() / 2 ? 0 : mid);
+    for (int i = first; i < first + widths[b]; ++i) {
+      for (int j = first; j < i; ++j) m(i, j) = u(rng);
+      for (int j = sep; j < sep + mid; ++j)
+        if (u(rng) > -0.3) m(j, i) = u(rng);
+      for (int j = leaves + 2 * mid; j < n; ++j)
+        if (u(rng) > 0.4) m(j, i) = u(rng);
+    }
+    first += widths[b];
+  }
+  for (int i = leaves; i < n; ++i)
+    for (int j = leaves; j < i; ++j) m(i, j) = u(rng);
+  m = m.triangularView<Eigen::StrictlyLower>();
+  m = m + m.transpose().eval();
+  for (int i = 0; i < n; ++i) m(i, i) = m.row(i).cwiseAbs().sum() + 1.0;
+  return m.sparseView();
+}
+
+TEST(SparseLdlt, DenseSupernodesSolveLikeADenseReference) {
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    const SpMat a = block_tree_matrix(seed);
+    const Eigen::MatrixXd dense(a);
+    const VecX b = VecX::LinSpaced(a.rows(), -1.0, 2.0);
+    const VecX exact = dense.ldlt().solve(b);
+    std::vector<int> order(a.rows());
+    std::iota(order.begin(), order.end(), 0);
+    for (int parts : {1, 2, 3, 5, 16}) {
+      std::vector<VecX> results;
+      for (int threads : {1, 2, 3}) {
+        set_thread_count(threads);
+        SparseLdlt ldlt;
+        ldlt.analyze(a, order, parts);
+        ASSERT_TRUE(ldlt.factorize(a));
+        VecX x(a.rows());
+        ldlt.solve(b, x);
+        EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm()) << seed << " parts " << parts;
+        ldlt.keep_float_copy(true);
+        ASSERT_TRUE(ldlt.factorize(a));
+        VecX xf(a.rows());
+        ldlt.solve_float(b, xf);
+        EXPECT_LT((xf - exact).norm(), 1e-5 * exact.norm()) << seed << " parts " << parts;
+        results.push_back(x);
+      }
+      for (std::size_t k = 1; k < results.size(); ++k)
+        EXPECT_EQ(0, std::memcmp(results[0].data(), results[k].data(),
+                                 sizeof(double) * results[0].size()))
+            << "seed " << seed << ", parts " << parts << ": threads differ";
+    }
+  }
+  set_thread_count(0);
 }
 
 TEST(SparseLdlt, RefactorisesNewValuesOnTheSamePattern) {
