@@ -3,8 +3,10 @@
 //   name = "..."
 //   [mesh] [material] [time] [solver] [initial] [gravity] [ground] [ceiling] [barrier]
 // A missing [gravity], [ground] or [ceiling] section switches that term off; in those
-// sections `enabled = false` does the same (useful with --set). Every error is one line,
-// "<file>:<line>: <section.key>: <reason>", naming the key the user wrote.
+// sections `enabled = false` does the same (useful with --set). A file's error reports
+// every independent mistake at once, one non-empty line each (joined by '\n', none after
+// the last), "<file>:<line>: <section.key>: <reason>": each starts with the file's name and
+// names the key the user wrote. An override's error is one line.
 #pragma once
 
 #include <optional>
