@@ -220,8 +220,12 @@ class SimulationThread {
     changed_.notify_all();
     return true;
   }
+  // Runs after every step: triangle_det_f's values (core/simulation.h, the same F and
+  // determinant, so the same range bit for bit) folded into the range as they are computed,
+  // without the vector it would allocate each time.
   void measure_det_f() {
-    for (const double d : triangle_det_f(sim_)) {
+    for (int t = 0; t < sim_.mesh.triangle_count(); ++t) {
+      const double d = triangle_deformation_gradient(sim_, t).determinant();
       det_lo_ = std::min(det_lo_, d);
       det_hi_ = std::max(det_hi_, d);
     }
