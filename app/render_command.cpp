@@ -326,9 +326,9 @@ struct RenderedFrames {
 // The pipeline (see the top of this file): a simulation thread per run, drawing here, PNG
 // encoding on the writer's threads. Several runs (--compare) go in lockstep, frame i of
 // each the state after i * its steps-per-frame steps, drawn side by side at the renderer's
-// size each, with one det F colour range and one camera for all; a run that failed or
-// settled keeps its last frame (a failed one marked) while the others go on. Stops when
-// every run has ended, at a write error or Ctrl-C.
+// size each, with one colour scale (det F, Psi or stress) and one camera for all; a run
+// that failed or settled keeps its last frame (a failed one marked) while the others go
+// on. Stops when every run has ended, at a write error or Ctrl-C.
 RenderedFrames render_frames(const std::vector<RenderRun>& runs, render::Renderer& renderer,
                              render::FrameWriter& writer, const RenderOptions& opt,
                              const std::function<double()>& elapsed) {
@@ -396,7 +396,7 @@ RenderedFrames render_frames(const std::vector<RenderRun>& runs, render::Rendere
       const auto [lo, hi] = render::joint_bulk_det_f_range(states);
       color_range.apply(lo, hi, &draw_options);
     }
-    for (const render::FrameState* s : states) color_range.apply_field(*s, &draw_options);
+    color_range.apply_field(states, &draw_options);  // one Psi or stress scale for all views
     const render::Camera cam =
         opt.camera == "follow"
             ? (n == 1 ? follow.next(shown.front(), framed)
@@ -706,10 +706,10 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--compare", opt.compare,
                   "render the scene twice in lockstep, side by side: method A on the left, B on "
                   "the right (names of `invfree stability --methods`, e.g. "
-                  "lecture,no-projection), each view titled with its method, one det F scale and "
-                  "one camera for both; a side that fails keeps its last good state, marked, "
-                  "while the other goes on (and the exit status stays 0: the failure is what "
-                  "is shown)")
+                  "lecture,no-projection), each view titled with its method, one colour scale "
+                  "(det F, psi or stress) and one camera for both; a side that fails keeps its "
+                  "last good state, marked, while the other goes on (and the exit status stays "
+                  "0: the failure is what is shown)")
       ->type_name("A,B");
   cmd->add_flag("--no-edges", opt.no_edges,
                 "do not draw the triangle edges (they are left out anyway where closer than 6 "

@@ -22,6 +22,20 @@ FieldStats field_stats(TriangleField field, const std::vector<double>& values) {
   return s;
 }
 
+FieldStats combine_field_stats(const FieldStats& a, const FieldStats& b) {
+  if (a.count == 0) return b;
+  if (b.count == 0) return a;
+  FieldStats s = a;
+  s.min = std::min(a.min, b.min);
+  s.max = std::max(a.max, b.max);
+  if (b.min_positive > 0.0 && (s.min_positive == 0.0 || b.min_positive < s.min_positive))
+    s.min_positive = b.min_positive;
+  s.max_abs = std::max(a.max_abs, b.max_abs);
+  s.count = a.count + b.count;
+  for (int k = 0; k < kClampedCategories; ++k) s.category_counts[k] += b.category_counts[k];
+  return s;
+}
+
 FieldScale auto_field_scale(TriangleField field, const FieldStats& stats) {
   switch (field) {
     case TriangleField::DetF: {

@@ -21,6 +21,9 @@ struct FieldStats {
   int category_counts[kClampedCategories] = {};  // clamped: triangles per count 0..4
 };
 FieldStats field_stats(TriangleField field, const std::vector<double>& values);
+// The stats of a and b's values together (frames shown side by side, a movie's frames so
+// far): the extremes of both, the counts added. A side with no values adds nothing.
+FieldStats combine_field_stats(const FieldStats& a, const FieldStats& b);
 
 // The automatic scale of the field over a frame with these stats (det F: auto_det_f_range).
 FieldScale auto_field_scale(TriangleField field, const FieldStats& stats);

@@ -1,8 +1,9 @@
 // Two views of one scene in one frame, left and right (`invfree render --compare`): each
 // view is a whole frame of half the width, drawn by the renderer on its own; what makes
-// them comparable is chosen once for both here: the det F colour range from both states'
-// det F, and a camera that frames the bodies of both (so equal positions are equal
-// pixels in either half).
+// them comparable is chosen once for both: here the det F colour range from both states'
+// det F and a camera that frames the bodies of both (so equal positions are equal pixels
+// in either half); Psi's and stress's scale from both states' values in
+// ColorRangeTracker::apply_field (view_choices.h), so equal colours are equal values.
 // Inputs: the two states of a frame (or their pixels). Outputs: DrawOptions fields, a
 // camera, the joined pixels.
 #pragma once

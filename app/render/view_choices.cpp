@@ -47,24 +47,25 @@ void ColorRangeTracker::apply(double lo, double hi, DrawOptions* options) {
 }
 
 void ColorRangeTracker::apply_field(const FrameState& frame, DrawOptions* options) {
+  apply_field(std::vector<const FrameState*>{&frame}, options);
+}
+
+void ColorRangeTracker::apply_field(const std::vector<const FrameState*>& frames,
+                                    DrawOptions* options) {
   options->field_scale.reset();
-  if (frame.color_by == TriangleField::DetF || frame.color_by == TriangleField::Clamped ||
-      mode == ColorRangeMode::Frame)
+  if (frames.empty()) return;
+  const TriangleField field = frames.front()->color_by;
+  if (field == TriangleField::DetF || field == TriangleField::Clamped) return;
+  FieldStats now;
+  for (const FrameState* f : frames) now = combine_field_stats(now, field_stats(field, f->field));
+  if (now.count == 0) return;
+  if (mode == ColorRangeMode::Frame) {  // (one frame: the renderer scales it by itself)
+    if (frames.size() > 1) options->field_scale = auto_field_scale(field, now);
     return;
-  const FieldStats s = field_stats(frame.color_by, frame.field);
-  if (s.count == 0) return;
-  if (!field_seen) {
-    run_field = s;
-    field_seen = true;
-  } else {
-    run_field.min = std::min(run_field.min, s.min);
-    run_field.max = std::max(run_field.max, s.max);
-    run_field.max_abs = std::max(run_field.max_abs, s.max_abs);
-    if (s.min_positive > 0.0 &&
-        (run_field.min_positive == 0.0 || s.min_positive < run_field.min_positive))
-      run_field.min_positive = s.min_positive;
   }
-  options->field_scale = auto_field_scale(frame.color_by, run_field);
+  run_field = field_seen ? combine_field_stats(run_field, now) : now;
+  field_seen = true;
+  options->field_scale = auto_field_scale(field, run_field);
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/render/camera.h"
 #include "app/render/field_legend.h"
@@ -46,8 +47,13 @@ struct ColorRangeTracker {
   // The scale of the field the frame is coloured by when it is not det F (Psi, stress):
   // they have no natural fixed range, so Frame gives each frame its own (leaves
   // options->field_scale unset) and Fixed and Run the widest over the frames so far, so
-  // that a movie's colours keep their meaning from frame to frame.
+  // that a movie's colours keep their meaning from frame to frame. Unset too for det F,
+  // clamped (fixed categories) and a frame without values.
   void apply_field(const FrameState& frame, DrawOptions* options);
+  // The same for frames shown together (`render --compare`'s two views, all coloured by
+  // the same field): one scale for all, chosen as above from the values of all of them
+  // (Frame too sets it then), so that a colour means the same value in every view.
+  void apply_field(const std::vector<const FrameState*>& frames, DrawOptions* options);
   void reset() {
     run_lo = run_hi = 1.0;
     field_seen = false;

@@ -2,7 +2,8 @@
 // lockstep, one frame with the two views side by side. Read from the frames' pixels: each
 // view's heading, its bodies, the agreement of two methods that must agree (the lecture's
 // diagonal projection and the 6x6 clamp, early on), a failing side's mark while the other
-// side goes on; and the command line's errors. Runs with DISPLAY unset.
+// side goes on, one Psi and stress colour scale for both views; and the command line's
+// errors. Runs with DISPLAY unset.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -189,6 +190,85 @@ TEST(RenderCompare, AFailingSideIsMarkedWhileTheOtherGoesOn) {
       0);
   EXPECT_GT(invfree::test::compare_images(crop(last, view, 0), crop(before, view, 0), 0).differing,
             0);
+}
+
+// The colour bar of the view whose panel starts at x = `panel_x` (the frame's whole height):
+// the columns and rows of the panel where most pixels are strongly coloured (the panel's
+// text is grey or black, the inverted triangles' swatch small).
+struct BarBox {
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
+};
+BarBox find_colour_bar(const RgbImage& image, int panel_x, int panel_w) {
+  const auto coloured = [&](int x, int y) {
+    const std::uint8_t* p = &image.rgb[3 * (size_t(y) * image.width + x)];
+    return std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 40;
+  };
+  BarBox b{-1, -1, image.height, 0};
+  for (int x = panel_x; x < panel_x + panel_w; ++x) {
+    int n = 0, top = image.height, bottom = 0;
+    for (int y = 0; y < image.height; ++y)
+      if (coloured(x, y)) ++n, top = std::min(top, y), bottom = std::max(bottom, y + 1);
+    if (n < image.height / 4) continue;
+    if (b.x0 < 0) b.x0 = x;
+    b.x1 = x + 1;
+    b.y0 = std::min(b.y0, top);
+    b.y1 = std::max(b.y1, bottom);
+  }
+  return b;
+}
+
+TEST(RenderCompare, PsiAndStressHaveOneScaleForBothViews) {
+  // Each side stops where its method fails and keeps its last state while the lecture's
+  // squash goes on, so the two views' values differ: stress-h0.1's Psi beside plain Newton
+  // (stalls at step 24; at frame 25 the lecture's largest Psi is 102 kPa, plain Newton's
+  // 72 kPa: a view scaled alone tops at 200 and 100 kPa), stress-soft's stress beside
+  // backtracking alone (fails at step 34; by frame 39 17 kPa against 9.6 kPa: +-20 and
+  // +-10 kPa). Each view has its own panel and bar; with one scale for both, the bars,
+  // their ticks and the ticks' labels are the same pixels in both views (the markers at
+  // each view's min and max differ: they are left and right of what is compared). With
+  // --color-range frame the scale of each frame is chosen from both views' values in it,
+  // with run from both over the frames so far.
+  const std::string scenes = std::string(invfree::test::source_dir()) + "/assets/scenes/";
+  const struct {
+    const char *scene, *methods, *field, *range;
+    int frames;
+  } cases[] = {{"stress-h0.1", "lecture,no-projection", "psi", "frame", 26},
+               {"stress-h0.1", "lecture,no-projection", "psi", "run", 26},
+               {"stress-soft", "lecture,no-inversion-filter", "stress", "frame", 40}};
+  const FrameLayout L = view_layout(960, 540);
+  const int half = L.width, panel_x = int(L.panel.x), panel_w = int(L.panel.w);
+  for (const auto& c : cases) {
+    const std::string what = std::string(c.scene) + " " + c.field + " --color-range " + c.range;
+    const std::string dir = fresh_dir(std::string("scale_") + c.field + "_" + c.range);
+    const CommandResult r =
+        run("render --scene " + scenes + c.scene + ".toml --compare " + c.methods + " --frames " +
+            std::to_string(c.frames) + " --size 960x540 --color-by " + c.field + " --color-range " +
+            c.range + " --out " + dir);
+    ASSERT_EQ(r.code, 0) << what << ": " << r.err << r.out;
+    ASSERT_NE(r.out.find("FAILED at step"), std::string::npos) << what << ": " << r.out;
+    int bars_differ = 0;
+    for (int i = 0; i < c.frames; ++i) {
+      const RgbImage image = frame(dir, i);
+      const BarBox left = find_colour_bar(image, panel_x, panel_w),
+                   right = find_colour_bar(image, half + panel_x, panel_w);
+      const std::string where = what + ", frame " + std::to_string(i);
+      ASSERT_GE(left.x1 - left.x0, 5) << where << ": no colour bar in the left panel";
+      ASSERT_EQ(right.x0 - half, left.x0) << where;
+      ASSERT_EQ(right.x1 - half, left.x1) << where;
+      ASSERT_EQ(right.y0, left.y0) << where;
+      ASSERT_EQ(right.y1, left.y1) << where;
+      // The bar (without its left edge, beside the markers), its ticks and the first
+      // pixels of their labels, and a few rows above and below for the end labels.
+      const int w = left.x1 - left.x0;
+      const PixelRect legend{double(left.x0 + 1), double(left.y0 - 6), double(2 * w),
+                             double(left.y1 - left.y0 + 12)};
+      const invfree::test::ImageDiff d =
+          invfree::test::compare_images(crop(image, legend, 0), crop(image, legend, half), 0);
+      if (d.differing > 0) ++bars_differ;
+    }
+    EXPECT_EQ(bars_differ, 0) << what << ": " << bars_differ << " of " << c.frames
+                              << " frames scale the two views differently";
+  }
 }
 
 }  // namespace

@@ -227,5 +227,33 @@ TEST(FieldLegend, AMoviesScaleOnlyWidensUnlessPerFrame) {
   EXPECT_FALSE(o.field_scale);  // det F's range is apply's
 }
 
+TEST(FieldLegend, FramesShownTogetherShareOneScale) {
+  // render --compare's two views: one scale from both frames' values, in every mode.
+  FrameState a, b;
+  a.color_by = b.color_by = TriangleField::Psi;
+  a.field = {3e3, 190e3};  // alone: 2 kPa..200 kPa
+  b.field = {40, 9e3};     // alone: 20 Pa..10 kPa
+  for (const ColorRangeMode mode :
+       {ColorRangeMode::Frame, ColorRangeMode::Run, ColorRangeMode::Fixed}) {
+    ColorRangeTracker tracker{mode};
+    DrawOptions o;
+    tracker.apply_field({&a, &b}, &o);
+    ASSERT_TRUE(o.field_scale) << color_range_mode_name(mode);
+    EXPECT_DOUBLE_EQ(o.field_scale->lo, 20.0) << color_range_mode_name(mode);
+    EXPECT_DOUBLE_EQ(o.field_scale->hi, 200e3) << color_range_mode_name(mode);
+    tracker.apply_field({&b, &a}, &o);  // either order
+    EXPECT_DOUBLE_EQ(o.field_scale->lo, 20.0) << color_range_mode_name(mode);
+    EXPECT_DOUBLE_EQ(o.field_scale->hi, 200e3) << color_range_mode_name(mode);
+  }
+  const FieldStats both = combine_field_stats(field_stats(TriangleField::Stress, {-40e3, 1e3}),
+                                              field_stats(TriangleField::Stress, {2e3, 7e3}));
+  EXPECT_EQ(both.min, -40e3);
+  EXPECT_EQ(both.max, 7e3);
+  EXPECT_EQ(both.min_positive, 1e3);
+  EXPECT_EQ(both.max_abs, 40e3);
+  EXPECT_EQ(both.count, 4);
+  EXPECT_EQ(combine_field_stats(FieldStats{}, both).max, 7e3);  // no values: adds nothing
+}
+
 }  // namespace
 }  // namespace invfree::render
