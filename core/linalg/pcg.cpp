@@ -6,41 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "linalg/parallel.h"
+#include "linalg/blocked_vector_ops.h"
 #include "linalg/sparse_ldlt.h"
 
 namespace invfree {
 
 using SpMat = Eigen::SparseMatrix<double>;
-
-namespace {
-
-// y = H v (H in full symmetric storage, so column i is row i, plus the couplings outside
-// its pattern) and v.y, in fixed blocks, then the couplings in list order.
-double multiply(const SpMat& h, std::span<const NodeCoupling> couplings, const VecX& v, VecX& y) {
-  const int n = static_cast<int>(h.rows());
-  const int* outer = h.outerIndexPtr();
-  const int* inner = h.innerIndexPtr();
-  const double* values = h.valuePtr();
-  const BlockSplit blocks = split_blocks(n, 8192, 256);
-  double partial[256];
-  thread_pool().run(blocks.blocks, [&](int b) {
-    double dot = 0.0;
-    for (int i = blocks.begin(b), end = blocks.end(b, n); i < end; ++i) {
-      double s = 0.0;
-      for (int k = outer[i]; k < outer[i + 1]; ++k) s += values[k] * v[inner[k]];
-      y[i] = s;
-      dot += s * v[i];
-    }
-    partial[b] = dot;
-  });
-  double dot = 0.0;
-  for (int b = 0; b < blocks.blocks; ++b) dot += partial[b];
-  if (!couplings.empty()) dot += add_couplings_product(couplings, v, y);
-  return dot;
-}
-
-}  // namespace
 
 void ReusedFactorPcg::setup(const SpMat& pattern, SparseLdlt& factor) {
   const int n = static_cast<int>(pattern.rows());
@@ -210,7 +181,7 @@ void ReusedFactorPcg::apply_preconditioner(const SpMat& h, const VecX& in, VecX&
   const std::vector<int>& set = use_block_ ? block_set_ : changed_;
   const int m = static_cast<int>(set.size());
   smooth(in);  // z1 = S in; t = in - H z1 (z1 is nonzero on the set only: its columns)
-  t_ = in;
+  blocked_copy(in, t_);
   for (int a = 0; a < m; ++a) {
     const int i = set[a];
     for (int k = outer[i]; k < outer[i + 1]; ++k) t_[inner[k]] -= v[k] * block_x_[a];
@@ -240,47 +211,65 @@ void ReusedFactorPcg::apply_preconditioner(const SpMat& h, const VecX& in, VecX&
 // Returns 1 converged, 0 not within max_iterations_, -1 breakdown.
 int ReusedFactorPcg::run(const SpMat& h, const VecX& b, VecX& x, const SolveRequest& req,
                          SparseLdlt& factor, LinearSolveStats& stats) {
-  x.setZero();
+  const Eigen::Index n = b.size();
+  x.setZero(n);
   couplings_ = req.couplings;
-  const double b_norm = b.norm();
+  const double b_norm = std::sqrt(blocked_dot(b, b));
   if (b_norm == 0.0) return 1;
-  r_ = b;
+  blocked_copy(b, r_);
   prepare_correction(h);
   apply_preconditioner(h, r_, z_, factor);
-  p_ = z_;
-  double rz = r_.dot(z_);
+  blocked_copy(z_, p_);
+  double rz = blocked_dot(r_, z_);
   const bool decide = req.threshold > 0.0 && req.lambda_min > 0.0;
   double decrease = 0.0;
   for (int k = 1; k <= max_iterations_; ++k) {
-    const double php = multiply(h, couplings_, p_, hp_);
+    const double php = multiply_symmetric(h, couplings_, p_, hp_);
     if (!(php > 0.0) || !std::isfinite(php)) return -1;
     const double alpha = rz / php;
     decrease += alpha * rz;  // twice the decrease of the quadratic model so far
-    x += alpha * p_;
-    r_ -= alpha * hp_;
+    // x += alpha p, r -= alpha H p, |r|_2^2 and |x|_inf in one pass.
+    double r_part[256], x_part[256];
+    for_each_block(n, [&](int begin, int length, int block) {
+      auto xb = x.segment(begin, length);
+      auto rb = r_.segment(begin, length);
+      xb += alpha * p_.segment(begin, length);
+      rb -= alpha * hp_.segment(begin, length);
+      r_part[block] = rb.squaredNorm();
+      x_part[block] = xb.lpNorm<Eigen::Infinity>();
+    });
+    double r_squared = 0.0, x_inf = 0.0;
+    for (int block = 0, blocks = vector_blocks(n).blocks; block < blocks; ++block) {
+      r_squared += r_part[block];
+      x_inf = std::max(x_inf, x_part[block]);
+    }
     ++stats.pcg_iterations;
-    const double r_norm = r_.norm();
+    const double r_norm = std::sqrt(r_squared);
     if (r_norm <= 1e-13 * b_norm) return 1;  // as accurate as a direct solve
-    if (decide && x.lpNorm<Eigen::Infinity>() < req.threshold) {
+    if (decide && x_inf < req.threshold) {
       // Newton would stop: only when the exact solution certainly would too.
       auto certain = [&](double residual_norm) {
-        return x.lpNorm<Eigen::Infinity>() + residual_norm / req.lambda_min < req.threshold;
+        return x_inf + residual_norm / req.lambda_min < req.threshold;
       };
       if (certain(r_norm)) {
         // Confirm with the true residual b - H x (CG's recurrence drifts by rounding).
-        multiply(h, couplings_, x, hp_);
-        z_ = b - hp_;
-        if (certain(z_.norm())) return 1;
+        multiply_symmetric(h, couplings_, x, hp_);
+        const double true_squared = sum_over_blocks(n, [&](int begin, int length) {
+          return (b.segment(begin, length) - hp_.segment(begin, length)).squaredNorm();
+        });
+        if (certain(std::sqrt(true_squared))) return 1;
       }
     } else if (alpha * rz <= req.forcing * decrease) {
       return 1;  // Newton goes on with this direction (an inexact Newton step)
     }
     apply_preconditioner(h, r_, z_, factor);
-    const double rz_next = r_.dot(z_);
+    const double rz_next = blocked_dot(r_, z_);
     if (!(rz_next > 0.0)) return -1;
     const double beta = rz_next / rz;
     rz = rz_next;
-    p_ = z_ + beta * p_;
+    for_each_block(n, [&](int begin, int length, int) {
+      p_.segment(begin, length) = z_.segment(begin, length) + beta * p_.segment(begin, length);
+    });
   }
   return 0;
 }

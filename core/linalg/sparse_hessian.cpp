@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "linalg/blocked_vector_ops.h"
+
 namespace invfree {
 
 int sparse_slot(const Eigen::SparseMatrix<double>& m, int row, int col) {
@@ -135,8 +137,7 @@ void add_node_block(SparseHessian& h, int i, int j, const Mat2& block) {
 }
 
 void multiply_hessian(const SparseHessian& h, const VecX& v, VecX& y) {
-  y.noalias() = h.matrix * v;
-  if (!h.couplings.empty()) add_couplings_product(h.couplings, v, y);
+  multiply_symmetric(h.matrix, h.couplings, v, y);
 }
 
 void SparseHessian::eliminate_ceiling() {

@@ -1,5 +1,6 @@
 #include "potential/elasticity.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -106,18 +107,28 @@ double smallest_positive_root(double a, double b, double c) {
   return best;
 }
 
+// The smallest step over fixed blocks of triangles: a minimum, so exact in any order.
 double inversion_free_step(const Mesh& mesh, const VecX& x, const VecX& p) {
+  const int nt = mesh.triangle_count();
+  const BlockSplit tri = split_blocks(nt, kTriangleBlock, kMaxBlocks);
+  double partial[kMaxBlocks];
+  run_blocks(tri.blocks, [&](int b) {
+    double alpha = 1.0;
+    for (int t = tri.begin(b), end = tri.end(b, nt); t < end; ++t) {
+      const auto& v = mesh.triangles[t];
+      const Vec2 x1 = x.segment<2>(2 * v[0]);
+      const Vec2 x21 = x.segment<2>(2 * v[1]) - x1, x31 = x.segment<2>(2 * v[2]) - x1;
+      const Vec2 p1 = p.segment<2>(2 * v[0]);
+      const Vec2 p21 = p.segment<2>(2 * v[1]) - p1, p31 = p.segment<2>(2 * v[2]) - p1;
+      const double area = cross(x21, x31);
+      const double a = cross(p21, p31) / area;
+      const double b_coef = (cross(x21, p31) + cross(p21, x31)) / area;
+      alpha = std::min(alpha, smallest_positive_root(a, b_coef, 1.0 - kMinAreaFraction));
+    }
+    partial[b] = alpha;
+  });
   double alpha = 1.0;
-  for (const auto& tri : mesh.triangles) {
-    const Vec2 x1 = x.segment<2>(2 * tri[0]);
-    const Vec2 x21 = x.segment<2>(2 * tri[1]) - x1, x31 = x.segment<2>(2 * tri[2]) - x1;
-    const Vec2 p1 = p.segment<2>(2 * tri[0]);
-    const Vec2 p21 = p.segment<2>(2 * tri[1]) - p1, p31 = p.segment<2>(2 * tri[2]) - p1;
-    const double area = cross(x21, x31);
-    const double a = cross(p21, p31) / area;
-    const double b = (cross(x21, p31) + cross(p21, x31)) / area;
-    alpha = std::min(alpha, smallest_positive_root(a, b, 1.0 - kMinAreaFraction));
-  }
+  for (int b = 0; b < tri.blocks; ++b) alpha = std::min(alpha, partial[b]);
   return alpha;
 }
 
