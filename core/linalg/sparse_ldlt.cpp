@@ -4,6 +4,10 @@
 #include <atomic>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "linalg/parallel.h"
 
 namespace invfree {
@@ -88,6 +92,15 @@ constexpr int kBlock = 4;
 // vector that stays in cache, so wider blocks than the solves' still pay.
 constexpr int kFactorBlock = 8;
 
+#if defined(__SSE2__)
+// Two consecutive entries of a column as doubles. (The SSE2 loops below make the very
+// operations of the scalar ones, two rows or two partial sums at a time: the same bits.)
+inline __m128d load_pair(const double* p) { return _mm_loadu_pd(p); }
+inline __m128d load_pair(const float* p) {
+  return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
+}
+#endif
+
 // Forward, L y = b: the block [a, a + W) updates its own rows, then every row below it,
 // the first `split` of `rows` in y and the rest in acc, at `slots` (one per row from `split`). Each row gets the columns'
 // updates in column order, as a column-by-column loop makes them.
@@ -113,13 +126,23 @@ inline void forward_block(int a, int j1, const int* rows, int count, int split, 
   }
 #pragma GCC unroll 8
   for (int c = 0; c < W; ++c) v[c] += inner;
-  for (int r = 0; r < split; ++r) {
+  int r = 0;
+#if defined(__SSE2__)
+  for (; r + 2 <= split; r += 2) {
+    __m128d t = _mm_set_pd(y[rows[r + 1]], y[rows[r]]);
+#pragma GCC unroll 8
+    for (int c = 0; c < W; ++c) t = _mm_sub_pd(t, _mm_mul_pd(load_pair(v[c] + r), _mm_set1_pd(yc[c])));
+    _mm_storel_pd(y + rows[r], t);
+    _mm_storeh_pd(y + rows[r + 1], t);
+  }
+#endif
+  for (; r < split; ++r) {
     double t = y[rows[r]];
 #pragma GCC unroll 8
     for (int c = 0; c < W; ++c) t -= v[c][r] * yc[c];
     y[rows[r]] = t;
   }
-  for (int r = split; r < count; ++r) {
+  for (r = split; r < count; ++r) {
     double t = acc[slots[r - split]];
 #pragma GCC unroll 8
     for (int c = 0; c < W; ++c) t -= v[c][r] * yc[c];
@@ -257,6 +280,27 @@ inline void dense_backward_block(int c, int k, int len, const int* lp, const T* 
   // What the solve reads next: the entries before this block's, downwards.
   const long before = lp[c];
   int r0 = 0;
+#if defined(__SSE2__)
+  // The same operations with the two partial sums of a column in one register (the
+  // compiler leaves this loop scalar).
+  __m128d sv[W];
+#pragma GCC unroll 4
+  for (int a = 0; a < W; ++a) sv[a] = _mm_setzero_pd();
+  for (; r0 + kChunk <= len; r0 += kChunk) {
+    prefetch_span(lx + std::max(0L, before - static_cast<long>(r0 + kChunk) * W), kChunk * W);
+#pragma GCC unroll 2
+    for (int r = r0; r < r0 + kChunk; r += 2) {
+      const __m128d x = _mm_loadu_pd(rest + r);
+#pragma GCC unroll 4
+      for (int a = 0; a < W; ++a) sv[a] = _mm_add_pd(sv[a], _mm_mul_pd(load_pair(v[a] + r), x));
+    }
+  }
+#pragma GCC unroll 4
+  for (int a = 0; a < W; ++a) {
+    _mm_storel_pd(&s[a][0], sv[a]);
+    _mm_storeh_pd(&s[a][1], sv[a]);
+  }
+#else
   for (; r0 + kChunk <= len; r0 += kChunk) {
     prefetch_span(lx + std::max(0L, before - static_cast<long>(r0 + kChunk) * W), kChunk * W);
     for (int r = r0; r < r0 + kChunk; r += 2) {
@@ -267,6 +311,7 @@ inline void dense_backward_block(int c, int k, int len, const int* lp, const T* 
       }
     }
   }
+#endif
   for (int r = r0; r < len; ++r) {
 #pragma GCC unroll 4
     for (int a = 0; a < W; ++a) s[a][r & 1] += v[a][r] * rest[r];
@@ -325,6 +370,21 @@ inline void narrow_backward(int j0, const int* rows, int m, const int* lp, const
       s0[a] = s1[a] = 0.0;
     }
     int r = 0;
+#if defined(__SSE2__)
+    __m128d sv[W];
+#pragma GCC unroll 4
+    for (int a = 0; a < W; ++a) sv[a] = _mm_setzero_pd();
+    for (; r + 2 <= m; r += 2) {
+      const __m128d x = _mm_set_pd(y[rows[r + 1]], y[rows[r]]);
+#pragma GCC unroll 4
+      for (int a = 0; a < W; ++a) sv[a] = _mm_add_pd(sv[a], _mm_mul_pd(load_pair(v[a] + r), x));
+    }
+#pragma GCC unroll 4
+    for (int a = 0; a < W; ++a) {
+      _mm_storel_pd(s0 + a, sv[a]);
+      _mm_storeh_pd(s1 + a, sv[a]);
+    }
+#else
     for (; r + 2 <= m; r += 2) {
       const double x0 = y[rows[r]], x1 = y[rows[r + 1]];
 #pragma GCC unroll 4
@@ -333,6 +393,7 @@ inline void narrow_backward(int j0, const int* rows, int m, const int* lp, const
         s1[a] += v[a][r + 1] * x1;
       }
     }
+#endif
     if (r < m) {
       const double x0 = y[rows[r]];
 #pragma GCC unroll 4
@@ -816,7 +877,12 @@ void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
   const int* gb = gather_begin_.data();
   const int* gs = gather_slots_.data();
   const double* d = d_.data();
-  for (int i = 0; i < n; ++i) y[old_to_new_[i]] = b[i];
+  // The permutations in fixed blocks over the pool: each writes every entry once (the
+  // first as a scatter: on one thread it is faster than the gather, whose reads stall).
+  const BlockSplit perm_blocks = split_blocks(n, 1 << 13, 64);
+  thread_pool().run(perm_blocks.blocks, [&](int k) {
+    for (int i = perm_blocks.begin(k); i < perm_blocks.end(k, n); ++i) y[old_to_new_[i]] = b[i];
+  });
   const int levels = static_cast<int>(level_begin_.size()) - 1;
   // Forward: L y = b, level by level; a task first takes the updates its rows received
   // from the tasks below, then updates its own rows in y and the others' in its slots.
@@ -877,7 +943,9 @@ void SparseLdlt::solve_with(const T* lx, const VecX& b, VecX& x) {
         }
     });
   }
-  for (int i = 0; i < n; ++i) x[i] = y[old_to_new_[i]];
+  thread_pool().run(perm_blocks.blocks, [&](int k) {
+    for (int i = perm_blocks.begin(k); i < perm_blocks.end(k, n); ++i) x[i] = y[old_to_new_[i]];
+  });
 }
 
 SparseLdlt::TreeParallelism SparseLdlt::tree_parallelism() const {

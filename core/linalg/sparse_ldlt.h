@@ -28,8 +28,12 @@
 // (vectorised passes, no indices) and scatters the rows below once into y and the task's
 // accumulator slots; the backward solve gathers the rows below once and takes every
 // column's dot product with the buffer. Narrower supernodes update the rows below a block
-// of up to four columns directly, reading each once. Each sum's order is fixed by the
-// supernodes and `parts`, so the solve stays bit-identical for any thread count.
+// of up to four columns directly, reading each once. Where the compiler leaves a loop
+// scalar (the backward dot products, the narrow supernodes' indexed rows), SSE2 takes two
+// rows or two partial sums at a time with the scalar loop's very operations: the same bits
+// with or without it. Each sum's order is fixed by the supernodes and `parts`, so the
+// solve stays bit-identical for any thread count. The permutations in and out run in
+// fixed blocks over the threads.
 //
 // Inputs: the full symmetric pattern (CSC, both triangles, sorted) and a fill-reducing
 // ordering; then values on that same pattern. No allocation after `analyze` (unless the
