@@ -145,10 +145,10 @@ bool log_slider(PanelState& ps, const char* id, const char* label, const LogSlid
 }
 
 // A double slider, linear or logarithmic over `range`, whose typed value may leave the
-// range: it is then clamped with a note.
+// range: it is then clamped with a note. `shown_instead`: a text in place of the value.
 bool clamped_slider(LiveController& lc, PanelState& ps, const char* label, const char* name,
-                    double* v, Range range, const char* unit, const char* format,
-                    bool logarithmic) {
+                    double* v, Range range, const char* unit, const char* format, bool logarithmic,
+                    const char* shown_instead = nullptr) {
   const auto position = [&](double x) {
     if (logarithmic) return LogSlider{range.lo, range.hi}.position(x);
     return range.hi > range.lo ? std::clamp((x - range.lo) / (range.hi - range.lo), 0.0, 1.0) : 0.0;
@@ -156,6 +156,7 @@ bool clamped_slider(LiveController& lc, PanelState& ps, const char* label, const
   float t = static_cast<float>(position(*v));
   char text[64];
   std::snprintf(text, sizeof text, format, *v);
+  if (shown_instead) std::snprintf(text, sizeof text, "%s", shown_instead);
   double edit = *v;
   switch (readable_slider(ps, label, name, &t, text, *v, &edit)) {
     case SliderEdit::Dragged:
@@ -459,10 +460,13 @@ void contact_section(LiveController& lc, PanelState& ps) {
     apply(lc, next);
   }
   ImGui::EndDisabled();
+  // Without a ceiling its two sliders are greyed out and say so in place of their values
+  // (a line of its own would push the panel's last row out of a 1280x720 window).
   ImGui::BeginDisabled(!next.has_ceiling);
+  const char* no_ceiling = next.has_ceiling ? nullptr : "no ceiling";
   double speed = -next.ceiling_velocity;
   if (clamped_slider(lc, ps, "ceiling speed (m/s)", "ceiling speed", &speed, kCeilingSpeedRange,
-                     "m/s", "%.3f", false)) {
+                     "m/s", "%.3f", false, no_ceiling)) {
     next.ceiling_velocity = -speed;
     apply(lc, next);
   }
@@ -470,12 +474,19 @@ void contact_section(LiveController& lc, PanelState& ps) {
   const Range stop = ceiling_stop_range(next.ground_y, next.has_ground, original.ceiling_y,
                                         scene_length_scale(next));
   if (clamped_slider(lc, ps, "ceiling stop (m)", "ceiling stop", &next.ceiling_stop, stop, "m",
-                     "%.3f", false))
+                     "%.3f", false, no_ceiling))
     apply(lc, next);
   ImGui::EndDisabled();
-  if (!next.has_ceiling) ImGui::TextColored(kDimColor, "(this scene has no ceiling)");
   clamped_slider(lc, ps, "grab spring (N/m)", "grab spring", &lc.pull_stiffness,
                  kPullStiffnessRange, "N/m", "%.3g", true);
+}
+
+// A plot's height: three text lines where the window has the room, down to two (its top
+// and bottom values beside it) so that the panel's last row ends inside the window (at
+// 1280x720, UI scale 1, 50 px); less than that scrolls.
+float plot_height() {
+  const float line = ImGui::GetTextLineHeightWithSpacing();
+  return std::clamp(ImGui::GetContentRegionAvail().y, 2.0f * line, 3.0f * line);
 }
 
 // The top and bottom values of a plot `h` high, beside it (right of the last item).
@@ -500,7 +511,7 @@ void labelled_plot(PanelState& ps, const char* name, const char* title,
   std::snprintf(bottom, sizeof bottom, format, lo);
   const ImGuiStyle& style = ImGui::GetStyle();
   const float label_w = std::max(ImGui::CalcTextSize(top).x, ImGui::CalcTextSize(bottom).x);
-  const float h = 3.0f * ImGui::GetTextLineHeightWithSpacing();
+  const float h = plot_height();
   const float w = ImGui::GetContentRegionAvail().x - label_w - style.ItemSpacing.x;
   const std::string id = std::string("##") + name;
   ImGui::PlotLines(id.c_str(), values.data(), static_cast<int>(values.size()), 0, nullptr, lo, hi,
@@ -554,7 +565,7 @@ void energy_plot(const LiveController& lc, PanelState& ps) {
   std::snprintf(bottom, sizeof bottom, "%.3g J", lo);
   const ImGuiStyle& style = ImGui::GetStyle();
   const float label_w = std::max(ImGui::CalcTextSize(top).x, ImGui::CalcTextSize(bottom).x);
-  const float h = 3.0f * ImGui::GetTextLineHeightWithSpacing();
+  const float h = plot_height();
   const float w = ImGui::GetContentRegionAvail().x - label_w - style.ItemSpacing.x;
   const ImVec2 a = ImGui::GetCursorScreenPos(), b(a.x + w, a.y + h);
   ImGui::Dummy(ImVec2(w, h));
@@ -729,9 +740,11 @@ PanelRequests draw_panel(LiveController& lc, PanelState& ps) {
   ImGui::SetNextWindowBgAlpha(1.0f);  // opaque: the picture's plane lines must not show through
   // A scroll bar a finger can drag where the panel is longer than the screen.
   if (ps.touch) ImGui::PushStyleVar(ImGuiStyleVar_ScrollbarSize, 0.5f * kTouchTarget * ps.ui_scale);
+  // No title bar: the window's own says "invfree live", and at 1280x720 the panel's rows
+  // need its height (every control inside the window, none behind the scroll bar).
   ImGui::Begin("invfree live", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoSavedSettings);
+               ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
   if (ps.touch) ImGui::PopStyleVar();
   ps.rects["panel"] = {place.x, place.y, place.x + place.w, place.y + place.h};
   ImGui::PushItemWidth(place.w * 0.55f);

@@ -399,5 +399,35 @@ TEST(LiveInput, BodiesWithTheirOwnMaterialAreLabelled) {
   EXPECT_FALSE(app->widget_rects().count("body_materials"));
 }
 
+TEST(LiveInput, EveryControlOfThePanelFitsTheWindowAt1280x720) {
+  // The panel is as high as the window and scrolls where its rows are longer; at 1280x720,
+  // UI scale 1 (the projector's window), every control and plot of it lies inside the
+  // window in every built-in scene (their rows differ: a chapter's note, several bodies'
+  // friction, a course scene's mass-spring rows), so none needs the scroll bar to reach.
+  auto app = open_app({});
+  ASSERT_TRUE(app);
+  app->frame();
+  ASSERT_EQ(app->view().ui_scale, 1.0f);
+  const auto& scenes = app->controller().scenes();
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    app->controller().select_scene(static_cast<int>(i));
+    app->frame();
+    app->frame();
+    const auto& rects = app->widget_rects();
+    ASSERT_TRUE(rects.count("panel")) << scenes[i].label;
+    const WidgetRect panel = rects.at("panel");
+    EXPECT_EQ(panel.y0, 0.0f);
+    EXPECT_EQ(panel.y1, 720.0f);
+    ASSERT_TRUE(rects.count("energy_plot")) << scenes[i].label;  // the panel's last row
+    for (const auto& [name, r] : rects) {
+      // (not the panel's rows: the panel itself, the windows and notes over the picture)
+      if (name == "panel" || name == "picture" || name == "note" || name == "inspector" ||
+          name == "landscape_window" || name == "presentation" || name.rfind("method:", 0) == 0)
+        continue;
+      EXPECT_LE(r.y1, panel.y1) << scenes[i].label << ": " << name << " ends at y " << r.y1;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace invfree::live
