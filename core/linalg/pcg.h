@@ -51,13 +51,15 @@ namespace invfree {
 class SparseLdlt;
 
 // A preconditioner whose factor has at least this many entries is applied from L rounded
-// to float (SparseLdlt::keep_float_copy). The solves PCG repeats are bound by memory
-// traffic, and float halves it; from here L in double (8 bytes an entry: 32 MB) no longer
-// fits a large L3 cache. `invfree_bench --benchmark_filter=LdltSolve/n_seg:256` times a
-// solve pair from both (its L_nonzeros counter is the factor's size).
-// A rounded B is still an SPD preconditioner (D stays positive), so PCG and its stopping
-// rules are unchanged; the direct solvers and smaller factors keep double.
-constexpr long kFloatPreconditionerMinEntries = 4'000'000;
+// to float (SparseLdlt::keep_float_copy). The solves PCG repeats are bound by reading L,
+// and float halves that: a solve pair takes ~25% less time at n_seg 128 (1.29 M entries,
+// 10 MB in double) and ~30% less at n_seg 256 (6.42 M), with the same CG iterations per
+// step to within 0.2%, and gains nothing at n_seg 64 (0.26 M entries, within the caches):
+// `invfree_bench --benchmark_filter=LdltSolve` times a pair from both (its L_nonzeros
+// counter is the factor's size). A rounded B is still an SPD preconditioner (D stays
+// positive), so PCG and its stopping rules are unchanged; the direct solvers and smaller
+// factors keep double.
+constexpr long kFloatPreconditionerMinEntries = 1'000'000;
 
 class ReusedFactorPcg {
  public:
