@@ -484,6 +484,8 @@ void SparseLdlt::analyze(const Eigen::SparseMatrix<double>& pattern,
   plan(std::max(parts, 1));
   share_row_indices();
   plan_accumulators();
+  plan_supernodes();
+  scratch_.clear();  // sized for this analysis
   size_scratch();
   work_.resize(n);
   if (!lx_float_.empty()) keep_float_copy(true);  // a kept copy follows the new factor's size
@@ -771,7 +773,7 @@ void SparseLdlt::factor_rows(int begin, int end, Scratch& s, bool positive_defin
     // j1 < k, rows j + 1 .. j1 and then the first lnz_[j1] of the shared rows below j1;
     // where k lies in the supernode, only rows j + 1 .. k - 1.
     const int* lp = lp_.data();
-    if (!blocked_factor_) {
+    if (factor_method_ == FactorMethod::kRowsOneColumnAtATime) {
       for (; head < n; ++head) {
         const int i = pattern[head];
         const double yi = y[i];
@@ -816,6 +818,11 @@ void SparseLdlt::size_scratch() {
     s.y.assign(n_, 0.0);
     s.flag.assign(n_, -1);
     s.pattern.assign(n_, 0);
+    s.front.assign(front_size_, 0.0);
+    s.update.assign(update_size_, 0.0);
+    s.panel.assign(panel_size_, 0.0);
+    s.pivots.assign(front_width_, 0.0);
+    s.local.assign(n_, 0);
   }
 }
 
@@ -839,8 +846,14 @@ bool SparseLdlt::factorize(const Eigen::SparseMatrix<double>& a, bool positive_d
       bool ok = ok_runner[r] != 0;
       for (int k; ok && (k = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
         const int task = first + k;
-        for (int q = range_begin_[task]; q < range_begin_[task + 1] && ok; ++q)
-          factor_rows(ranges_[q].first, ranges_[q].second, scratch_[r], positive_definite, ok);
+        for (int q = range_begin_[task]; q < range_begin_[task + 1] && ok; ++q) {
+          if (factor_method_ != FactorMethod::kSupernodal) {
+            factor_rows(ranges_[q].first, ranges_[q].second, scratch_[r], positive_definite, ok);
+            continue;
+          }
+          for (int j = ranges_[q].first; j < ranges_[q].second && ok; j = snode_last_[j] + 1)
+            factor_supernode(sn_of_[j], scratch_[r], positive_definite, ok);
+        }
       }
       ok_runner[r] = ok ? 1 : 0;
     });

@@ -65,9 +65,13 @@ class SparseLdlt {
   // (arithmetic stays double), and solve_float reads that: half the memory traffic of a
   // solve, for a preconditioner. Without the copy solve_float is solve.
   void keep_float_copy(bool on);
-  // For tests: factorise one column at a time instead of in supernode blocks (the blocks
-  // make the same operations in the same order, so the factor has the same bits).
-  void set_blocked_factor(bool on) { blocked_factor_ = on; }
+  // How factorize works. kSupernodal (the default): left-looking by supernode with dense
+  // kernels (sparse_ldlt_supernodal.cpp). kRows: the up-looking rows, in supernode blocks;
+  // kRowsOneColumnAtATime: the same rows one column at a time (the same operations in the
+  // same order as kRows, so the same bits; for tests). All three give the same pattern and
+  // layout of L; the supernodal factor's rounding differs from the rows'.
+  enum class FactorMethod { kSupernodal, kRows, kRowsOneColumnAtATime };
+  void set_factor_method(FactorMethod m) { factor_method_ = m; }
   void solve_float(const VecX& b, VecX& x);
 
   int size() const { return n_; }
@@ -98,9 +102,15 @@ class SparseLdlt {
   struct Scratch {
     std::vector<double> y;
     std::vector<int> flag, pattern;
+    // The supernodal factorisation's: the supernode's dense front, a descendant's update,
+    // the pivots of the front and each row's place in the front (local).
+    std::vector<double> front, update, panel, pivots;
+    std::vector<int> local;
   };
   static constexpr int kMaxRunners = 256;
   void factor_rows(int begin, int end, Scratch& s, bool positive_definite, bool& ok);
+  void plan_supernodes();
+  void factor_supernode(int s, Scratch& scratch, bool positive_definite, bool& ok);
   void plan(int parts);
   void plan_accumulators();
   void share_row_indices();
@@ -132,7 +142,19 @@ class SparseLdlt {
   std::vector<int> acc_begin_, ext_base_, ext_slots_, gather_begin_, gather_slots_;
   std::vector<double> acc_;
   std::vector<Scratch> scratch_;  // one per thread (factorize)
-  bool blocked_factor_ = true;
+  FactorMethod factor_method_ = FactorMethod::kSupernodal;
+  // The supernodal factorisation's plan (plan_supernodes): supernode s is the columns
+  // sn_first_[s] .. sn_first_[s + 1] - 1; sn_of_[j] is column j's. Its rows below (m of
+  // them) times its columns are kept dense, column-major, at ls_[ls_begin_[s] ..] for the
+  // supernodes above. The descendants d that update s, in ascending order, are
+  // upd_d_[upd_begin_[s] ..], each with its rows in s: entries upd_p1_ .. upd_p2_ of d's
+  // rows below. A's entries of s's columns go from ax_[asm_src_[q]] to its front at
+  // asm_dst_[q], q in asm_begin_[s] ...
+  std::vector<int> sn_first_, sn_of_, ls_begin_, upd_begin_, upd_d_, upd_p1_, upd_p2_;
+  std::vector<int> asm_begin_, asm_src_, asm_dst_;
+  std::vector<double> ls_;
+  std::size_t front_size_ = 0, update_size_ = 0, panel_size_ = 0;
+  int front_width_ = 0;
   // The solves' row indices: column j's are solve_rows_[solve_row_begin_[j] ..], one list
   // per supernode (share_row_indices).
   std::vector<int> solve_rows_, solve_row_begin_;

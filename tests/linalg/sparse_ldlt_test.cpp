@@ -295,7 +295,8 @@ TEST(SparseLdlt, BlockedFactorisationHasTheColumnLoopsBits) {
     for (int blocked : {0, 1}) {
       SparseLdlt ldlt;
       analyze_like_the_solver(a, ldlt);
-      ldlt.set_blocked_factor(blocked != 0);
+      ldlt.set_factor_method(blocked != 0 ? SparseLdlt::FactorMethod::kRows
+                                            : SparseLdlt::FactorMethod::kRowsOneColumnAtATime);
       ASSERT_TRUE(ldlt.factorize(a));
       x[blocked].resize(a.rows());
       ldlt.solve(b, x[blocked]);
@@ -304,6 +305,101 @@ TEST(SparseLdlt, BlockedFactorisationHasTheColumnLoopsBits) {
     EXPECT_EQ(0, std::memcmp(x[0].data(), x[1].data(), sizeof(double) * x[0].size()))
         << a.rows() << " unknowns";
   }
+}
+
+// The supernodal factorisation (the default) against a dense LDL^T: dense leaf blocks of
+// widths 1 to 13 under two separators, the solver's METIS ordering of a mesh (separators
+// wider than a panel of 32 columns: the panels' products and the descendants' blocked
+// updates), and a dense matrix of 75 columns (one supernode, three panels). The matrices
+// are diagonally dominant or mesh Laplacians of condition below ~1e4, so a backward-stable
+// factor solves to ~1e-16 x 1e4; 1e-12 leaves room and still sees any missing update.
+TEST(SparseLdlt, SupernodalFactorSolvesLikeADenseReference) {
+  std::mt19937 rng(5u);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd dense = Eigen::MatrixXd::NullaryExpr(75, 75, [&] { return u(rng); });
+  dense = dense * dense.transpose() + 75.0 * Eigen::MatrixXd::Identity(75, 75);
+  std::vector<SpMat> matrices = {block_tree_matrix(1u), block_tree_matrix(2u),
+                                 mesh_matrix(52, 1.0, 12u), dense.sparseView()};
+  for (const SpMat& a : matrices) {
+    const bool large = a.rows() >= kNestedDissectionMinUnknowns;
+    const VecX b = VecX::LinSpaced(a.rows(), -1.0, 2.0);
+    const VecX exact = large ? VecX(Eigen::SimplicialLDLT<SpMat>(a).solve(b))
+                             : VecX(Eigen::MatrixXd(a).ldlt().solve(b));
+    std::vector<int> order(a.rows());
+    std::iota(order.begin(), order.end(), 0);
+    for (int parts : {1, 2, 5, 16}) {
+      std::vector<VecX> results;
+      for (int threads : {1, 2, 3}) {
+        set_thread_count(threads);
+        SparseLdlt ldlt;
+        if (large)
+          analyze_like_the_solver(a, ldlt);
+        else
+          ldlt.analyze(a, order, parts);
+        ASSERT_TRUE(ldlt.factorize(a));
+        VecX x(a.rows());
+        ldlt.solve(b, x);
+        EXPECT_LT((x - exact).norm(), 1e-12 * exact.norm())
+            << a.rows() << " unknowns, parts " << parts << ", threads " << threads;
+        EXPECT_LT((a * x - b).norm(), 1e-12 * b.norm());
+        // The rows' factor (up-looking, other rounding) solves the same way.
+        SparseLdlt rows;
+        rows.set_factor_method(SparseLdlt::FactorMethod::kRows);
+        if (large)
+          analyze_like_the_solver(a, rows);
+        else
+          rows.analyze(a, order, parts);
+        ASSERT_TRUE(rows.factorize(a));
+        VecX y(a.rows());
+        rows.solve(b, y);
+        EXPECT_LT((x - y).norm(), 1e-12 * y.norm());
+        results.push_back(x);
+      }
+      for (std::size_t k = 1; k < results.size(); ++k)
+        EXPECT_EQ(0, std::memcmp(results[0].data(), results[k].data(),
+                                 sizeof(double) * results[0].size()))
+            << a.rows() << " unknowns, parts " << parts << ": threads differ";
+      if (large) break;  // the solver's own part count
+    }
+  }
+  set_thread_count(0);
+}
+
+// A symmetric indefinite matrix whose leading minors are all nonzero: one dense supernode
+// of 70 columns (three panels) and a mesh with a negative diagonal shift. Without
+// positive_definite it factorises and solves like a dense reference; with it the first
+// negative pivot is reported as a failure.
+TEST(SparseLdlt, SupernodalFactorTakesIndefiniteMatricesOnlyWhenAllowed) {
+  std::mt19937 rng(7u);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd m = Eigen::MatrixXd::NullaryExpr(70, 70, [&] { return u(rng); });
+  m = (m + m.transpose()).eval();
+  for (int i = 0; i < 70; ++i) m(i, i) = (i % 3 == 1 ? -1.0 : 1.0) * (30.0 + i);
+  const std::vector<SpMat> matrices = {m.sparseView(), mesh_matrix(30, -1.0, 3u)};
+  for (const SpMat& a : matrices) {
+    const VecX b = VecX::LinSpaced(a.rows(), 1.0, -1.0);
+    const VecX exact = Eigen::SimplicialLDLT<SpMat>(a).solve(b);
+    std::vector<int> order(a.rows());
+    std::iota(order.begin(), order.end(), 0);
+    SparseLdlt ldlt;
+    ldlt.analyze(a, a.rows() == 70 ? order : amd_order(a), 3);
+    EXPECT_FALSE(ldlt.factorize(a, true)) << a.rows();
+    ASSERT_TRUE(ldlt.factorize(a, false)) << a.rows();
+    VecX x(a.rows());
+    ldlt.solve(b, x);
+    EXPECT_LT((x - exact).norm(), 1e-10 * exact.norm()) << a.rows();
+    EXPECT_LT((a * x - b).norm(), 1e-10 * b.norm()) << a.rows();
+  }
+  // A zero pivot is refused either way: [[1, 1], [1, 1]] in any supernode.
+  Eigen::MatrixXd singular = Eigen::MatrixXd::Identity(40, 40);
+  singular.block(10, 10, 2, 2).setOnes();
+  const SpMat s = singular.sparseView();
+  std::vector<int> order(40);
+  std::iota(order.begin(), order.end(), 0);
+  SparseLdlt ldlt;
+  ldlt.analyze(s, order, 1);
+  EXPECT_FALSE(ldlt.factorize(s, false));
+  EXPECT_FALSE(ldlt.factorize(s, true));
 }
 
 TEST(SparseLdlt, BitIdenticalForAnyThreadCount) {
