@@ -13,9 +13,22 @@ namespace invfree {
 
 using SpMat = Eigen::SparseMatrix<double>;
 
+// The cost model counts flops, not the clock (runs stay reproducible), but a flop of the
+// supernodal factorisation is cheaper than one of an iteration where its fronts are wide:
+// on the 2-core machine a factorisation runs at 16 G flops/s at n_seg 256 (6.4 M entries
+// of L), 9 at 128 and 5 at 64, an iteration (a float solve pair, a product) at 6.5-7
+// (`invfree_bench --benchmark_filter='LdltFactorize|LdltSolve'`). So from 4 M entries a
+// factorisation's flops count 0.4 times: compress at n_seg 256 refreshes its factor every
+// ~5 steps instead of every ~18, CG takes 12.1 iterations per step instead of 16.5 and
+// Newton 2.17 instead of 2.40, and the mean step falls by ~11% (`invfree bench --sizes 256
+// --steps 300`); smaller factors keep weight 1 (0.4 made n_seg 32-128 slower).
+constexpr long kWideFrontMinEntries = 4'000'000;
+constexpr double kWideFrontFlopWeight = 0.4;
+
 void ReusedFactorPcg::setup(const SpMat& pattern, SparseLdlt& factor) {
   const int n = static_cast<int>(pattern.rows());
-  factor_cost_ = factor.factor_flops();
+  factor_cost_ = factor.factor_flops() *
+                 (factor.factor_nonzeros() >= kWideFrontMinEntries ? kWideFrontFlopWeight : 1.0);
   iter_cost_ = factor.solve_flops() + 2.0 * pattern.nonZeros() + 12.0 * n;
   max_iterations_ = std::max(2, static_cast<int>(std::ceil(factor_cost_ / iter_cost_)));
   if (factor.factor_nonzeros() >= kFloatPreconditionerMinEntries) factor.keep_float_copy(true);
