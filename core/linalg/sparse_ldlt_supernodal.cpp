@@ -206,7 +206,9 @@ void SparseLdlt::factor_supernode(int s, Scratch& scratch, bool positive_definit
   for (int c = 0; c < w; ++c) {
     d_[f + c] = dk[c];
     const double* fc = front + static_cast<std::size_t>(c) * ld;
-    std::memcpy(lx_.data() + lp_[f + c], fc + c + 1, sizeof(double) * (ld - c - 1));
+    // (A column with no entries below may sit in an empty lx_, whose data() is null.)
+    if (const int below = ld - c - 1; below > 0)
+      std::memcpy(lx_.data() + lp_[f + c], fc + c + 1, sizeof(double) * below);
     if (m > 0) std::memcpy(ls_.data() + ls_begin_[s] + static_cast<std::size_t>(c) * m, fc + w,
                            sizeof(double) * m);
   }
