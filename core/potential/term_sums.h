@@ -61,17 +61,19 @@ double sum_energy(const P& p, StepCaches& caches, const VecX& z) {
 
 // Inertia and the node terms' derivatives for nodes [begin, end): each block owns its
 // nodes' gradient entries (set, not added: these come first) and Hessian slots. The
-// ceiling unknown's own entries are shared by every node: returned as block partials.
+// ceiling unknown's own entries are shared by every node: returned as block partials,
+// summed in locals and stored once (the blocks' partials share a cache line: adding into
+// them node by node made two threads 3.6x slower than one at n_seg 256).
 template <class P>
 void add_node_derivatives(const P& p, const double* z, int begin, int end, Assembly& out,
-                          double& ceiling_g, double& ceiling_h) {
+                          double& ceiling_g_out, double& ceiling_h_out) {
   const double h2 = p.h * p.h;
   SparseHessian& hess = out.hessian;
   double* g = out.gradient.data();
   double* values = hess.values();
   const int* diag = hess.diagonal_slots.data();
   const bool with_ceiling = p.dof_count() > 2 * p.node_count();
-  ceiling_g = ceiling_h = 0.0;
+  double ceiling_g = 0.0, ceiling_h = 0.0;
   for (int i = begin; i < end; ++i) {
     const int ix = 2 * i, iy = 2 * i + 1;
     const NodeState s = p.node_state(z, i);
@@ -97,6 +99,8 @@ void add_node_derivatives(const P& p, const double* z, int begin, int end, Assem
       }
     }
   }
+  ceiling_g_out = ceiling_g;
+  ceiling_h_out = ceiling_h;
 }
 
 template <class P>
