@@ -140,11 +140,4 @@ void multiply_hessian(const SparseHessian& h, const VecX& v, VecX& y) {
   multiply_symmetric(h.matrix, h.couplings, v, y);
 }
 
-void SparseHessian::eliminate_ceiling() {
-  if (ceiling_dof < 0) return;
-  double* v = values();
-  for (int s : ceiling_slots) v[s] = 0.0;
-  v[diagonal_slots[ceiling_dof]] = 1.0;
-}
-
 }  // namespace invfree

@@ -55,8 +55,6 @@ struct SparseHessian {
     couplings.clear();
   }
   double* values() { return matrix.valuePtr(); }
-  // Makes the ceiling row and column those of an eliminated (fixed) unknown.
-  void eliminate_ceiling();
 };
 
 // extra_pairs: node pairs coupled by a term beyond the triangles (the mass-spring

@@ -32,14 +32,15 @@ struct CeilingPenalty {
     return value_at(at.z[2 * at.node_count()], scale);
   }
   // The ceiling's own entries; the nodes' barrier terms added theirs before. A fixed
-  // ceiling is eliminated from the system (its row and column those of the identity).
+  // ceiling is eliminated from the system (its row and column those of the identity): the
+  // node pass left its couplings at zero (term_sums.h), so only the diagonal is set.
   void add_derivatives(const TermPoint& at, double, Assembly& out) const {
     const int c = 2 * at.node_count();
     out.gradient[c] += gradient(at.z[c]);
     out.hessian.values()[out.hessian.diagonal_slots[c]] += stiffness;
     if (fixed) {
       out.gradient[c] = 0.0;
-      out.hessian.eliminate_ceiling();
+      out.hessian.values()[out.hessian.diagonal_slots[c]] = 1.0;
     }
   }
 

@@ -1,6 +1,6 @@
 // Fixed nodes (Dirichlet boundary conditions, scene/fixed_nodes.h) eliminated from Newton's
 // system as the tutorial's 2_dirichlet does and as the ceiling's fixed unknown is
-// (SparseHessian::eliminate_ceiling): their gradient entries are set to 0 and their rows
+// (CeilingPenalty::add_derivatives): their gradient entries are set to 0 and their rows
 // and columns to those of the identity, so the direction is 0 there and the solve acts on
 // the free degrees of freedom only. A fixed node then never moves: it starts at rest and
 // every step's direction leaves it where it is.

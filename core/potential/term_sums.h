@@ -73,6 +73,9 @@ void add_node_derivatives(const P& p, const double* z, int begin, int end, Assem
   double* values = hess.values();
   const int* diag = hess.diagonal_slots.data();
   const bool with_ceiling = p.dof_count() > 2 * p.node_count();
+  // A fixed ceiling is no unknown: its couplings stay zero (CeilingPenalty::add_derivatives
+  // then needs to set only its diagonal, not to clear 2 slots per node).
+  const bool ceiling_coupled = with_ceiling && !p.ceiling_penalty.fixed;
   double ceiling_g = 0.0, ceiling_h = 0.0;
   for (int i = begin; i < end; ++i) {
     const int ix = 2 * i, iy = 2 * i + 1;
@@ -93,7 +96,7 @@ void add_node_derivatives(const P& p, const double* z, int begin, int end, Assem
     if (with_ceiling) {
       ceiling_g += d.gc;
       ceiling_h += d.hcc;
-      if (d.hyc != 0.0) {
+      if (ceiling_coupled && d.hyc != 0.0) {
         values[hess.ceiling_slots[2 * i]] += d.hyc;
         values[hess.ceiling_slots[2 * i + 1]] += d.hyc;
       }
