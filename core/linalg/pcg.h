@@ -97,8 +97,9 @@ class ReusedFactorPcg {
   int max_iterations_ = 0;    // no more iterations than a fresh factorisation costs
   VecX r_, z_, p_, hp_, t_;
   // Diagonal correction of the reused factor (see prepare_correction).
-  std::vector<int> diag_pos_;     // position of H(i, i) in the value array
-  VecX factored_diag_;            // diag(H) when the factor was computed
+  std::vector<int> diag_pos_;                       // position of H(i, i) in the value array
+  VecX factored_diag_;                              // diag(H) when the factor was computed
+  std::vector<std::vector<int>> changed_in_block_;  // the scan's finds, per vector block
   std::vector<int> changed_;      // unknowns whose diagonal moved by more than 30% since
   std::vector<char> is_changed_;  // 1 on `changed_`, 2 on the rest of `block_set_`
   std::vector<int> block_set_;    // D: `changed_` and its neighbours
