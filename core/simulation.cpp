@@ -4,17 +4,18 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <type_traits>
 #include <limits>
+#include <type_traits>
 
 #include "collision/intersection_check.h"
 #include "energy_report.h"
 #include "make_terms.h"
 #include "potential/term_sums.h"
+#include "potential/work_blocks.h"
 #include "scene/fixed_nodes.h"
 #include "scene/initial_state.h"
-#include "scene/scene_mesh.h"
 #include "scene/reduced_basis.h"
+#include "scene/scene_mesh.h"
 #include "solver/step_workspace.h"
 
 namespace invfree {
@@ -25,6 +26,27 @@ Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::~Simulation() = default;
 
 namespace {
+
+// The first triangle t (lowest index) whose det F fails `ok`, or -1: fixed blocks of
+// triangles on the pool, the lowest failing index of each, the first block's that has one.
+// The same answer for any thread count; at n_seg 256 a serial pass took ~0.5 ms, twice a step.
+template <class Ok>
+int first_triangle_failing(const Mesh& mesh, const double* x, Ok&& ok) {
+  const int nt = mesh.triangle_count();
+  const BlockSplit tri = split_blocks(nt, kTriangleBlock, kMaxBlocks);
+  int first[kMaxBlocks];
+  run_blocks(tri.blocks, [&](int b) {
+    first[b] = -1;
+    for (int t = tri.begin(b), end = tri.end(b, nt); t < end; ++t)
+      if (!ok(triangle_deformation_gradient(mesh, x, t).determinant())) {
+        first[b] = t;
+        break;
+      }
+  });
+  for (int b = 0; b < tri.blocks; ++b)
+    if (first[b] >= 0) return first[b];
+  return -1;
+}
 
 // Checks the state a step produced: finite, no inversion when the model forbids it, every
 // node strictly between the planes. Returns Ok or the first violation found.
@@ -45,11 +67,10 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
     }
   }
   if (s.has_triangle_elasticity() && !model_allows_inversion(s.model)) {
-    for (int t = 0; t < sim.mesh.triangle_count(); ++t) {
-      if (!(triangle_deformation_gradient(sim.mesh, x.data(), t).determinant() > 0.0)) {
-        *message = "triangle " + std::to_string(t) + " inverted (det F <= 0)";
-        return StepStatus::Inverted;
-      }
+    const int t = first_triangle_failing(sim.mesh, x.data(), [](double det) { return det > 0.0; });
+    if (t >= 0) {
+      *message = "triangle " + std::to_string(t) + " inverted (det F <= 0)";
+      return StepStatus::Inverted;
     }
   }
   if (s.self_contact_on()) {
@@ -137,10 +158,11 @@ StepStatus check_reported_quantities(const Simulation& sim, const ReportedState&
   if (!std::isfinite(e.contact)) return fail("the contact energy", e.contact);
   if (!std::isfinite(report.energy)) return fail("the step's energy", report.energy);
   if (!std::isfinite(report.residual)) return fail("the Newton residual", report.residual);
-  for (int t = 0; t < sim.mesh.triangle_count(); ++t)
-    if (const double det = triangle_deformation_gradient(sim.mesh, x.data(), t).determinant();
-        !std::isfinite(det))
-      return fail("det F of triangle " + std::to_string(t), det);
+  if (const int t =
+          first_triangle_failing(sim.mesh, x.data(), [](double det) { return std::isfinite(det); });
+      t >= 0)
+    return fail("det F of triangle " + std::to_string(t),
+                triangle_deformation_gradient(sim.mesh, x.data(), t).determinant());
   return StepStatus::Ok;
 }
 
@@ -288,8 +310,8 @@ Simulation make_simulation(const SceneDef& scene) {
   NewtonWorkspace& ws = sim.workspace->newton;
   StepWorkspace& step_ws = *sim.workspace;
   if (scene.has_mass_spring) {
-    step_ws.springs = scene.springs.empty() ? mesh_springs(sim.mesh)
-                                            : listed_springs(sim.mesh, scene.springs);
+    step_ws.springs =
+        scene.springs.empty() ? mesh_springs(sim.mesh) : listed_springs(sim.mesh, scene.springs);
     step_ws.spring_count = spring_counts(step_ws.springs, sim.mesh.node_count());
   }
   ws.hessian =
