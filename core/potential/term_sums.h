@@ -62,8 +62,8 @@ double sum_energy(const P& p, StepCaches& caches, const VecX& z) {
 // Inertia and the node terms' derivatives for nodes [begin, end): each block owns its
 // nodes' gradient entries (set, not added: these come first) and Hessian slots. The
 // ceiling unknown's own entries are shared by every node: returned as block partials,
-// summed in locals and stored once (the blocks' partials share a cache line: adding into
-// them node by node made two threads 3.6x slower than one at n_seg 256).
+// summed in locals and stored once (the blocks' partials share a cache line: threads adding
+// into them node by node would take it from each other at every node).
 template <class P>
 void add_node_derivatives(const P& p, const double* z, int begin, int end, Assembly& out,
                           double& ceiling_g_out, double& ceiling_h_out) {
