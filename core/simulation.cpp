@@ -9,6 +9,7 @@
 
 #include "collision/intersection_check.h"
 #include "energy_report.h"
+#include "linalg/blocked_vector_ops.h"
 #include "make_terms.h"
 #include "potential/term_sums.h"
 #include "potential/work_blocks.h"
@@ -109,6 +110,14 @@ struct ReportedState {
   double kinetic = 0.0, elastic = 0.0, gravitational = 0.0, contact = 0.0;
 };
 
+// v = (x_new - x) / h over the pool's fixed blocks (each entry as the plain expression).
+void blocked_velocity(const VecX& x_new, const VecX& x, double h, VecX& v) {
+  v.resize(x.size());
+  for_each_block(x.size(), [&](int begin, int length, int) {
+    v.segment(begin, length) = (x_new.segment(begin, length) - x.segment(begin, length)) / h;
+  });
+}
+
 // The accepted state's energies as energy_report_of adds them, from the step's own terms
 // (no allocation), except self-contact's barrier: its candidates need a broad phase, and
 // check_invariants has just proved every node-edge distance positive, where it is finite.
@@ -116,17 +125,32 @@ ReportedState reported_energies(const Simulation& sim, const VecX& z, const VecX
   StepWorkspace& ws = *sim.workspace;
   const StepProblem& p = ws.problem;
   ReportedState r;
-  for (int i = 0; i < p.node_count(); ++i)
-    r.kinetic += 0.5 * (*p.mass)[i] * v.segment<2>(2 * i).squaredNorm();
   auto reported = [](EnergyKind k) {
     return k == EnergyKind::Elastic || k == EnergyKind::Gravity || k == EnergyKind::Contact;
   };
+  // The node sums in fixed blocks (work_blocks.h), added in block order: the same bits on
+  // any thread count, and no serial pass over every node in a step.
+  const int n = p.node_count();
+  const BlockSplit blocks = split_blocks(n, kNodeBlock, kMaxBlocks);
+  double kinetic[kMaxBlocks];
+  EnergyBins block_bins[kMaxBlocks];
+  run_blocks(blocks.blocks, [&](int b) {
+    double k = 0.0;
+    EnergyBins e;
+    for (int i = blocks.begin(b); i < blocks.end(b, n); ++i) {
+      k += 0.5 * (*p.mass)[i] * v.segment<2>(2 * i).squaredNorm();
+      const NodeState s = p.node_state(z.data(), i);
+      p.for_each_node_term([&](const auto& term) {
+        if (term.on && reported(term.kind)) e[term.kind] += term.value(s);
+      });
+    }
+    kinetic[b] = k;
+    block_bins[b] = e;
+  });
   EnergyBins bins;
-  for (int i = 0; i < p.node_count(); ++i) {
-    const NodeState s = p.node_state(z.data(), i);
-    p.for_each_node_term([&](const auto& term) {
-      if (term.on && reported(term.kind)) bins[term.kind] += term.value(s);
-    });
+  for (int b = 0; b < blocks.blocks; ++b) {
+    r.kinetic += kinetic[b];
+    for (std::size_t k = 0; k < bins.value.size(); ++k) bins.value[k] += block_bins[b].value[k];
   }
   const TermPoint at = term_point(p, ws.caches, z);
   p.for_each_mesh_term([&](const auto& term) {
@@ -378,7 +402,7 @@ StepReport step(Simulation& sim) {
     if (sim.scene.is_static())
       ws.v_new.setZero();  // equilibrium: nothing moves between load steps
     else
-      ws.v_new = (ws.x_new - sim.x) / sim.scene.h;
+      blocked_velocity(ws.x_new, sim.x, sim.scene.h, ws.v_new);
   }
   if (report.status == StepStatus::Ok)
     report.status = check_invariants(sim, ws.x_new, ws.v_new, ceiling_new, &report.message);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <span>
 
 #include "linalg/node_coupling.h"
@@ -53,6 +54,33 @@ inline void blocked_copy(const VecX& in, VecX& out) {
   for_each_block(in.size(), [&](int begin, int length, int) {
     out.segment(begin, length) = in.segment(begin, length);
   });
+}
+
+// out = a + alpha b, elementwise (each entry as Eigen's own expression computes it).
+inline void blocked_add_scaled(const VecX& a, double alpha, const VecX& b, VecX& out) {
+  out.resize(a.size());
+  for_each_block(a.size(), [&](int begin, int length, int) {
+    out.segment(begin, length) = a.segment(begin, length) + alpha * b.segment(begin, length);
+  });
+}
+
+inline void blocked_negate(const VecX& in, VecX& out) {
+  out.resize(in.size());
+  for_each_block(in.size(), [&](int begin, int length, int) {
+    out.segment(begin, length) = -in.segment(begin, length);
+  });
+}
+
+// max |v_i| (a maximum: the same whatever the blocks).
+inline double blocked_max_abs(const VecX& v) {
+  double partial[256];
+  for_each_block(v.size(), [&](int begin, int length, int b) {
+    partial[b] = v.segment(begin, length).lpNorm<Eigen::Infinity>();
+  });
+  double m = 0.0;
+  for (int b = 0, blocks = vector_blocks(v.size()).blocks; b < blocks; ++b)
+    m = std::max(m, partial[b]);
+  return m;
 }
 
 // y = H v, H = h (full symmetric storage: column i is row i) plus the couplings outside its

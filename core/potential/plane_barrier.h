@@ -55,9 +55,11 @@ struct GroundBarrier {
     }
     add_along(d, normal.x(), normal.y(), d1, d2);
   }
-  // The largest step in [0, alpha] along p that keeps every node at least 10% of its gap.
-  double max_step(const VecX& x, int n, const VecX& p, double alpha) const {
-    for (int i = 0; i < n; ++i) {
+  // The largest step in [0, alpha] along p that keeps nodes [first, last) of the n at least
+  // 10% of their gap (term_sums.h runs the nodes in blocks).
+  double max_step(const VecX& x, int /*n*/, int first, int last, const VecX& p,
+                  double alpha) const {
+    for (int i = first; i < last; ++i) {
       const int y = 2 * i + 1;
       if (sloped) {
         const double closing = normal.x() * p[y - 1] + normal.y() * p[y];
@@ -92,11 +94,11 @@ struct CeilingBarrier {
       d.hyc -= d2;
     }
   }
-  // The largest step in [0, alpha] along p that keeps every node at least 10% of its gap
-  // below the ceiling (p's last entry moves the ceiling).
-  double max_step(const VecX& x, int n, const VecX& p, double alpha) const {
+  // The largest step in [0, alpha] along p that keeps nodes [first, last) of the n at least
+  // 10% of their gap below the ceiling (p's last entry moves the ceiling).
+  double max_step(const VecX& x, int n, int first, int last, const VecX& p, double alpha) const {
     const int c = 2 * n;
-    for (int i = 0; i < n; ++i) {
+    for (int i = first; i < last; ++i) {
       const int y = 2 * i + 1;
       const double closing = p[c] - p[y];  // rate of change of the gap c - y_i
       if (closing < 0.0) alpha = std::min(alpha, 0.9 * (x[c] - x[y]) / -closing);
@@ -119,8 +121,8 @@ struct CeilingBarrier {
 inline double plane_step(const GroundBarrier& ground, const CeilingBarrier& ceiling, int nodes,
                          const VecX& x, const VecX& p) {
   double alpha = 1.0;
-  if (ground.on) alpha = ground.max_step(x, nodes, p, alpha);
-  if (ceiling.on) alpha = ceiling.max_step(x, nodes, p, alpha);
+  if (ground.on) alpha = ground.max_step(x, nodes, 0, nodes, p, alpha);
+  if (ceiling.on) alpha = ceiling.max_step(x, nodes, 0, nodes, p, alpha);
   return alpha;
 }
 

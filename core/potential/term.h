@@ -18,8 +18,9 @@
 // Optional, found by the concepts below:
 //   double max_step(const TermPoint&, const VecX& dir, double alpha) const;
 //       the largest step in [0, alpha] along dir that keeps the term finite (inversion,
-//       CCD); a node term's filter (the planes) is
-//   double max_step(const VecX& z, int nodes, const VecX& dir, double alpha) const;
+//       CCD); a node term's filter (the planes) is, over the nodes [first, last) of `nodes`
+//   double max_step(const VecX& z, int nodes, int first, int last, const VecX& dir,
+//                   double alpha) const;
 //       a filter that keeps state (self-contact's candidates) also has
 //   double path_step(const TermPoint&, const VecX& trial) const;   (0, 1] of z -> trial
 //   void begin(const TermPoint&) const;     at Newton's start point (candidates there)
@@ -101,7 +102,7 @@ concept HasMaxStep = requires(const T t, const TermPoint& at, const VecX& dir) {
 };
 template <class T>
 concept HasNodeMaxStep = requires(const T t, const VecX& z, const VecX& dir) {
-  { t.max_step(z, 1, dir, 1.0) } -> std::convertible_to<double>;
+  { t.max_step(z, 1, 0, 1, dir, 1.0) } -> std::convertible_to<double>;
 };
 template <class T>
 concept HasPathStep = requires(const T t, const TermPoint& at, const VecX& trial) {

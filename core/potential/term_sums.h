@@ -146,12 +146,20 @@ bool assemble_terms(const P& p, StepCaches& caches, const VecX& z, Assembly& out
 
 template <class P>
 double min_safe_step(const P& p, StepCaches& caches, const VecX& z, const VecX& dir) {
-  double alpha = 1.0;
+  // The node filters over fixed node blocks: a minimum, the same whatever the split.
   const int n = p.node_count();
-  p.for_each_node_term([&](const auto& term) {
-    if constexpr (HasNodeMaxStep<std::decay_t<decltype(term)>>)
-      if (term.on) alpha = term.max_step(z, n, dir, alpha);
+  const BlockSplit blocks = split_blocks(n, kNodeBlock, kMaxBlocks);
+  double block_alpha[kMaxBlocks];
+  run_blocks(blocks.blocks, [&](int b) {
+    double a = 1.0;
+    p.for_each_node_term([&](const auto& term) {
+      if constexpr (HasNodeMaxStep<std::decay_t<decltype(term)>>)
+        if (term.on) a = term.max_step(z, n, blocks.begin(b), blocks.end(b, n), dir, a);
+    });
+    block_alpha[b] = a;
   });
+  double alpha = 1.0;
+  for (int b = 0; b < blocks.blocks; ++b) alpha = std::min(alpha, block_alpha[b]);
   const TermPoint at = term_point(p, caches, z);
   p.for_each_mesh_term([&](const auto& term) {
     if constexpr (HasMaxStep<std::decay_t<decltype(term)>>)

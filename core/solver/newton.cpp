@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "linalg/blocked_vector_ops.h"
 #include "solver/newton_interrupt.h"
 
 namespace invfree {
@@ -68,7 +69,7 @@ struct Newton {
   bool full_space_direction(const VecX& z) {
     const auto t = Clock::now();
     ip_gradient_hessian(p, caches, z, ws.gradient, ws.hessian);
-    ws.rhs = -ws.gradient;
+    blocked_negate(ws.gradient, ws.rhs);
     result.assembly_ms += ms_since(t);
     if (ws.reduced.on()) return reduced_direction();
     prepare_linear_solver(ws, settings.linear_solver, settings.projected);
@@ -115,11 +116,11 @@ struct Newton {
     halvings = stopped = 0;
     double trial_energy;
     while (true) {
-      ws.trial = z + alpha * ws.direction;
+      blocked_add_scaled(z, alpha, ws.direction, ws.trial);
       if (settings.friction_crossing_stop)
         stopped = stop_friction_crossings(p, z, ws.trial, ws.crossings);
       if (stopped > 0 && path_step(p, caches, z, ws.trial) < 1.0) {
-        ws.trial = z + alpha * ws.direction;  // the stops would cross an edge: the straight trial
+        blocked_add_scaled(z, alpha, ws.direction, ws.trial);  // the straight trial: the stops would cross an edge
         stopped = 0;
       }
       trial_energy = energy(ws.trial);
@@ -149,7 +150,7 @@ struct Newton {
     for (int k = 0; k < kMaxExpansions; ++k) {
       const double next = 2.0 * step;
       if (next > limit) break;
-      ws.trial2 = z + next * ws.direction;
+      blocked_add_scaled(z, next, ws.direction, ws.trial2);
       const double e2 = energy(ws.trial2);
       if (!(e2 < trial_energy)) break;
       ws.trial.swap(ws.trial2);
@@ -207,7 +208,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, StepCaches& ca
     // Stop when |p|_inf / h < tol, but never before one step: where the whole step's
     // motion is below tol h (a square at rest with h g < tol) the start would be accepted
     // every step and the square would never start to fall.
-    result.residual = ws.direction.lpNorm<Eigen::Infinity>() / problem.h;
+    result.residual = blocked_max_abs(ws.direction) / problem.h;
     if (result.residual < settings.tol && result.iterations > 0) {
       if (controls_at_target(problem, z, settings.tol * problem.h)) {
         result.energy = energy;
@@ -233,7 +234,7 @@ NewtonResult minimize_incremental_potential(StepProblem& problem, StepCaches& ca
         64.0 * std::numeric_limits<double>::epsilon() * (std::abs(energy) + 1.0) +
         problem.energy_rounding;
     if (predicted_decrease >= 0.0 && predicted_decrease < energy_noise) {
-      ws.trial = z + alpha * ws.direction;
+      blocked_add_scaled(z, alpha, ws.direction, ws.trial);
       const double trial_energy = newton.energy(ws.trial);
       if (std::isfinite(trial_energy)) {
         z.swap(ws.trial);
