@@ -4,7 +4,8 @@
 //                  (assembly, factorisation, solve, line search, other; mean ms per step),
 //                  PCG iterations and factorisations per step, the linear solver used,
 //                  and mesh_ms: the time to mesh the scene's bodies at that n_seg, cold;
-//                  then threads, speedup and efficiency (one row per size and thread count)
+//                  then threads, speedup and efficiency (one row per size and thread count),
+//                  max_ms and max_step (the slowest step), and paired_speedup
 //   DIR/bench.png  log-log chart of ms per step against degrees of freedom, with the
 //                  least-squares slope (fitted over n_seg >= 32 when two such sizes ran)
 // and a table on stdout. A scene with a reduced basis ([reduced]) also runs its full model on
@@ -16,8 +17,10 @@
 // n_seg slider). Times come from the step report's steady-clock split (core/simulation.h).
 //
 // `--threads 1,2,4` runs every size at every thread count (ascending; the core's
-// set_thread_count, core/linalg/parallel.h), one row each: the speed-up of the median step
-// against the smallest count and the parallel efficiency (speed-up / thread ratio), and
+// set_thread_count, core/linalg/parallel.h), the counts' runs taking turns of 10 steps so
+// that a drift in the machine's speed affects them alike, one row each: the speed-up of the
+// median step against the smallest count, the parallel efficiency (speed-up / thread ratio),
+// the paired speed-up (the median over the turns of the turns' time ratio), and
 // whether every step's positions were bit-identical across the counts (the core's pool
 // promises it). The chart then draws one line per thread count and a speed-up panel.
 #include <algorithm>
@@ -26,6 +29,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -86,6 +90,10 @@ struct BenchRow {
   // listed at the same size, and that over the thread ratio (1 and 1 for that count).
   int threads = 0;
   double speedup = 1.0, efficiency = 1.0;
+  // The median over the turns (run_bench) of the smallest count's time for the turn's steps
+  // over this count's: each ratio compares two turns a second or so apart, so a burst of
+  // load on the machine spoils only its own turns (1 for the smallest count).
+  double paired_speedup = 1.0;
   // A hash of the positions (x and the ceiling's height) after every step that ran.
   std::vector<std::uint64_t> step_hashes;
 };
@@ -175,57 +183,72 @@ std::string parse_threads(const std::string& text, std::vector<int>& counts) {
   return "";
 }
 
-// Runs `steps` steps of `scene` at n_seg; false (and *error) when a step fails or on Ctrl-C.
+constexpr int kStepsPerTurn = 10;  // run_bench: each thread count's share of the turns
+
+// One size's run, a step at a time, so that the runs at several thread counts can take
+// their steps in turn (run_bench). `begin` builds the simulation; each `step` runs and times
+// one step (false, with *error and *code, when it fails or on Ctrl-C); `finish` fills the
+// row's means and median from the steps that completed.
 // With `hashes`, row.step_hashes gets the positions' hash after every step (outside the timing).
-bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::string* error,
-              int* code, bool hashes = false) {
-  SceneDef scene = base;
-  scene.n_seg = n_seg;
-  if (auto e = validate_scene(scene); !e.empty()) {
-    *error = "n_seg " + std::to_string(n_seg) + ": " + e;
-    *code = exit_code::kBadInput;
-    return false;
-  }
-  Simulation sim = make_simulation(scene);
-  row = BenchRow{};
-  row.n_seg = n_seg;
-  row.threads = thread_count();
-  row.mesh_ms = cold_mesh_ms(scene);
-  row.nodes = sim.mesh.node_count();
-  row.triangles = sim.mesh.triangle_count();
-  row.dofs = 2 * row.nodes + (scene.has_ceiling ? 1 : 0);
-  row.solver =
-      scene.integrator != Integrator::SymplecticEuler ? linear_solver_backend(sim) : "explicit";
-  if (scene.reduced_basis != ReducedBasis::Full)
-    row.solver = "dense-ldlt-r" + std::to_string(sim.workspace->newton.reduced.basis.cols());
+struct SizeRun {
+  SceneDef scene;
+  std::optional<Simulation> sim;
+  BenchRow row;
   std::vector<double> ms;
-  ms.reserve(steps);
   long newton = 0, pcg = 0, factorizations = 0;
-  for (int k = 0; k < steps; ++k) {
-    if (interrupted()) {
-      *error = "interrupted at n_seg " + std::to_string(n_seg);
-      *code = interrupted_exit_code();
+  bool hashes = false;
+  bool interrupted_run = false;  // stopped by Ctrl-C: the row is dropped (finish: no steps)
+
+  bool begin(const SceneDef& base, int n_seg, int steps, bool keep_hashes, std::string* error,
+             int* code) {
+    scene = base;
+    scene.n_seg = n_seg;
+    hashes = keep_hashes;
+    if (auto e = validate_scene(scene); !e.empty()) {
+      *error = "n_seg " + std::to_string(n_seg) + ": " + e;
+      *code = exit_code::kBadInput;
       return false;
     }
-    const StepReport r = step(sim);
-    if (r.status != StepStatus::Ok && interrupted()) {  // a signal stopped Newton mid-step
-      *error = "interrupted at n_seg " + std::to_string(n_seg);
+    sim.emplace(make_simulation(scene));
+    row = BenchRow{};
+    row.n_seg = n_seg;
+    row.threads = thread_count();
+    row.mesh_ms = cold_mesh_ms(scene);
+    row.nodes = sim->mesh.node_count();
+    row.triangles = sim->mesh.triangle_count();
+    row.dofs = 2 * row.nodes + (scene.has_ceiling ? 1 : 0);
+    row.solver =
+        scene.integrator != Integrator::SymplecticEuler ? linear_solver_backend(*sim) : "explicit";
+    if (scene.reduced_basis != ReducedBasis::Full)
+      row.solver = "dense-ldlt-r" + std::to_string(sim->workspace->newton.reduced.basis.cols());
+    ms.reserve(steps);
+    return true;
+  }
+
+  bool step(std::string* error, int* code) {
+    const int k = static_cast<int>(ms.size());
+    const auto stop_interrupted = [&] {
+      interrupted_run = true;
+      *error = "interrupted at n_seg " + std::to_string(row.n_seg);
       *code = interrupted_exit_code();
       return false;
-    }
-    if (r.status != StepStatus::Ok) {
-      *error = "n_seg " + std::to_string(n_seg) + ": step " + std::to_string(k + 1) +
+    };
+    if (interrupted()) return stop_interrupted();
+    const StepReport r = invfree::step(*sim);
+    if (r.status != StepStatus::Ok && interrupted())  // a signal stopped Newton mid-step
+      return stop_interrupted();
+    if (r.status != StepStatus::Ok) {  // the row keeps the steps that completed
+      *error = "n_seg " + std::to_string(row.n_seg) + ": step " + std::to_string(k + 1) +
                " failed: " + step_status_name(r.status) + ": " + r.message;
       *code = exit_code::kRunFailed;
-      steps = k;  // the row keeps the steps that completed
-      break;
+      return false;
     }
     ms.push_back(r.wall_ms);
     if (r.wall_ms > row.max_ms) {
       row.max_ms = r.wall_ms;
       row.max_step = k + 1;
     }
-    if (hashes) row.step_hashes.push_back(positions_hash(sim));
+    if (hashes) row.step_hashes.push_back(positions_hash(*sim));
     newton += r.newton_iterations;
     if (r.newton_iterations > row.newton_worst) {
       row.newton_worst = r.newton_iterations;
@@ -238,9 +261,13 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     row.solve += r.solve_ms;
     row.line_search += r.line_search_ms;
     row.self_contact += r.self_contact_ms;
+    return true;
   }
-  row.steps = steps;
-  if (steps > 0) {
+
+  void finish() {
+    const int steps = interrupted_run ? 0 : static_cast<int>(ms.size());
+    row.steps = steps;
+    if (steps == 0) return;
     double total = 0.0;
     for (double m : ms) total += m;
     std::vector<double> sorted = ms;
@@ -262,6 +289,33 @@ bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::st
     row.other =
         std::max(0.0, row.mean_ms - row.assembly - row.factor - row.solve - row.line_search);
   }
+};
+
+// The median over the turns both runs completed of base's time for the turn over `other`'s
+// (BenchRow::paired_speedup); 0 when no turn is complete in both.
+double paired_speedup(const std::vector<double>& base, const std::vector<double>& other) {
+  const std::size_t steps = std::min(base.size(), other.size());
+  std::vector<double> ratios;
+  for (std::size_t first = 0; first + kStepsPerTurn <= steps; first += kStepsPerTurn) {
+    double a = 0.0, b = 0.0;
+    for (std::size_t k = first; k < first + kStepsPerTurn; ++k) a += base[k], b += other[k];
+    if (b > 0.0) ratios.push_back(a / b);
+  }
+  if (ratios.empty()) return 0.0;
+  std::sort(ratios.begin(), ratios.end());
+  const std::size_t m = ratios.size() / 2;
+  return ratios.size() % 2 ? ratios[m] : 0.5 * (ratios[m - 1] + ratios[m]);
+}
+
+// Runs `steps` steps of `scene` at n_seg; false (and *error) when a step fails or on Ctrl-C.
+bool run_size(const SceneDef& base, int n_seg, int steps, BenchRow& row, std::string* error,
+              int* code) {
+  SizeRun run;
+  if (!run.begin(base, n_seg, steps, false, error, code)) return false;
+  for (int k = 0; k < steps; ++k)
+    if (!run.step(error, code)) break;
+  run.finish();
+  row = std::move(run.row);
   return *code == exit_code::kOk;
 }
 
@@ -270,7 +324,7 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
   o << "n_seg,nodes,triangles,dofs,steps,mean_ms,median_ms,newton_per_step,newton_worst,"
        "newton_worst_step,assembly_ms,factor_ms,solve_ms,line_search_ms,other_ms,pcg_per_step,"
        "factorizations_per_step,solver,self_contact_ms,mesh_ms,full_median_ms,"
-       "full_newton_per_step,threads,speedup,efficiency,max_ms,max_step\n";
+       "full_newton_per_step,threads,speedup,efficiency,max_ms,max_step,paired_speedup\n";
   for (const auto& r : rows)
     o << r.n_seg << "," << r.nodes << "," << r.triangles << "," << r.dofs << "," << r.steps << ","
       << format_number(r.mean_ms, "%.6g") << "," << format_number(r.median_ms, "%.6g") << ","
@@ -283,7 +337,8 @@ std::string csv_text(const std::vector<BenchRow>& rows) {
       << (r.full_median_ms > 0 ? format_number(r.full_median_ms, "%.6g") : "") << ","
       << (r.full_median_ms > 0 ? format_number(r.full_newton, "%.5g") : "") << "," << r.threads
       << "," << format_number(r.speedup, "%.5g") << "," << format_number(r.efficiency, "%.5g")
-      << "," << format_number(r.max_ms, "%.6g") << "," << r.max_step << "\n";
+      << "," << format_number(r.max_ms, "%.6g") << "," << r.max_step << ","
+      << format_number(r.paired_speedup, "%.5g") << "\n";
   return o.str();
 }
 
@@ -474,7 +529,7 @@ void print_header(bool threads) {
   if (threads) std::printf("%7s ", "threads");
   std::printf("%8s %10s %6s %10s %10s %10s ", "dofs", "triangles", "steps", "median_ms", "mean_ms",
               "max_ms");
-  if (threads) std::printf("%7s %6s ", "speedup", "effic");
+  if (threads) std::printf("%7s %6s %7s ", "speedup", "effic", "paired");
   std::printf("%7s %6s %9s %9s %9s %9s %9s %6s %9s  %s\n", "newton", "worst", "assembly", "factor",
               "solve", "search", "contact", "pcg", "mesh_ms", "solver");
 }
@@ -491,7 +546,7 @@ void print_row(const BenchRow& row, bool reference, bool threads) {
   if (threads) std::printf("%7d ", row.threads);
   std::printf("%8d %10d %6d %10.4f %10.4f %10.4f ", row.dofs, row.triangles, row.steps,
               row.median_ms, row.mean_ms, row.max_ms);
-  if (threads) std::printf("%6.3fx %6.3f ", row.speedup, row.efficiency);
+  if (threads) std::printf("%6.3fx %6.3f %6.3fx ", row.speedup, row.efficiency, row.paired_speedup);
   std::printf("%7.2f %6d %9.4f %9.4f %9.4f %9.4f %9.4f %6.2f %9.3f  %s%s\n", row.newton,
               row.newton_worst, row.assembly, row.factor, row.solve, row.line_search,
               row.self_contact, row.pcg, row.mesh_ms, row.solver.c_str(), speedup.c_str());
@@ -576,6 +631,10 @@ int run_bench(const BenchOptions& opt) {
   if (counts.front() > 0) set_thread_count(counts.front());
   if (counts.front() == 0) counts = {thread_count()};
 
+  if (several)
+    std::printf("the thread counts' runs take turns of %d steps: a drift in the machine's speed "
+                "affects them alike\n",
+                kStepsPerTurn);
   print_header(several);
   const bool reference = is_reference_scene(*scene);
   std::vector<BenchRow> rows;
@@ -583,11 +642,31 @@ int run_bench(const BenchOptions& opt) {
   bool ok = true;
   for (std::size_t i = 0; i < sizes.size() && ok; ++i) {
     const int n = sizes[i];
-    double base_median = 0.0;
+    // One run per thread count, taking turns of kStepsPerTurn steps (the pool is switched
+    // between steps, never during one): a machine whose speed drifts over minutes slows
+    // every count alike, so the speed-up compares like with like. Turns of several steps,
+    // not one, keep a small mesh's data in cache from step to step as in a run alone.
+    std::vector<SizeRun> runs(counts.size());
     for (std::size_t k = 0; k < counts.size() && ok; ++k) {
-      if (several) set_thread_count(counts[k]);  // between runs: never while a step runs
-      BenchRow row;
-      ok = run_size(*scene, n, opt.steps, row, &error, &code, several);
+      if (several) set_thread_count(counts[k]);
+      ok = runs[k].begin(*scene, n, opt.steps, several, &error, &code);
+    }
+    if (!ok) break;
+    // A step that fails at one count is still tried at the others (it fails there too:
+    // the runs are bit-identical); Ctrl-C stops at once.
+    for (int first = 0; first < opt.steps && ok; first += kStepsPerTurn)
+      for (std::size_t k = 0; k < counts.size() && !interrupted(); ++k) {
+        if (several) set_thread_count(counts[k]);
+        const int last = std::min(opt.steps, first + kStepsPerTurn);
+        bool run_ok = true;
+        for (int step = first; step < last && run_ok; ++step) run_ok = runs[k].step(&error, &code);
+        ok = run_ok && ok;
+      }
+    double base_median = 0.0;
+    for (std::size_t k = 0; k < counts.size(); ++k) {
+      if (several) set_thread_count(counts[k]);
+      runs[k].finish();
+      BenchRow row = std::move(runs[k].row);
       if (ok && scene->reduced_basis != ReducedBasis::Full) {
         SceneDef full = *scene;
         full.reduced_basis = ReducedBasis::Full;
@@ -595,12 +674,14 @@ int run_bench(const BenchOptions& opt) {
         ok = run_size(full, n, opt.steps, full_row, &error, &code);
         if (ok) row.full_median_ms = full_row.median_ms, row.full_newton = full_row.newton;
       }
-      if (!ok && row.steps == 0) break;
-      if (!ok) row.solver += " (failed at step " + std::to_string(row.steps + 1) + ")";
+      if (row.steps == 0) break;
+      if (row.steps < opt.steps)
+        row.solver += " (failed at step " + std::to_string(row.steps + 1) + ")";
       if (k == 0) base_median = row.median_ms;
       if (k > 0 && row.median_ms > 0.0 && base_median > 0.0) {
         row.speedup = base_median / row.median_ms;
         row.efficiency = row.speedup * counts.front() / counts[k];
+        row.paired_speedup = paired_speedup(runs.front().ms, runs[k].ms);
       }
       rows.push_back(row);
       print_row(row, reference, several);

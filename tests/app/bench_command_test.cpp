@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -178,6 +179,50 @@ TEST(BenchCommand, AThreadListRunsEverySizeAtEveryCount) {
   const std::string png = test::slurp(dir + "/bench.png");
   ASSERT_GT(png.size(), 1000u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
+  std::filesystem::remove_all(dir);
+}
+
+// With several counts the runs take turns of a few steps (a drift in the machine's speed
+// then slows every count alike), still bit-identical; a step that fails is tried at every
+// count, where it fails alike: each count keeps its row, failed at that same step.
+TEST(BenchCommand, ThreadCountsTakeTurnsAndAFailedStepFailsAtEveryCount) {
+  const std::string dir = ::testing::TempDir() + "/bench_turns_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  // Two Newton iterations per step at most: the squash's first harder step fails.
+  const test::ProcessResult r =
+      test::run_invfree({"bench", "--sizes", "8", "--steps", "50", "--out", dir, "--threads",
+                         "1,2", "--set", "time.max_newton=2"});
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("failed"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("take turns of 10 steps"), std::string::npos) << r.out;
+  std::istringstream csv(test::slurp(dir + "/bench.csv"));
+  std::string header;
+  ASSERT_TRUE(std::getline(csv, header));
+  const auto columns = split(header, ',');
+  const auto at = [&](const char* name) {
+    return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) -
+                                    columns.begin());
+  };
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(csv, line);) rows.push_back(split(line, ','));
+  ASSERT_EQ(rows.size(), 2u) << "one row per count, the second too";
+  const int steps = std::stoi(rows[0][at("steps")]);
+  EXPECT_GT(steps, 0);
+  EXPECT_LT(steps, 50);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(std::stoi(rows[k][at("threads")]), k + 1);
+    EXPECT_EQ(std::stoi(rows[k][at("steps")]), steps);
+    EXPECT_NE(rows[k][at("solver")].find("(failed at step " + std::to_string(steps + 1) + ")"),
+              std::string::npos)
+        << rows[k][at("solver")];
+  }
+  // The paired speed-up (the median of the turns' time ratios): 1 for the smallest count,
+  // a positive ratio for the other (the 3 turns complete before the failure).
+  ASSERT_LT(at("paired_speedup"), columns.size());
+  EXPECT_EQ(std::stod(rows[0][at("paired_speedup")]), 1.0);
+  const double paired = std::stod(rows[1][at("paired_speedup")]);
+  EXPECT_GT(paired, 0.0);
+  EXPECT_TRUE(std::isfinite(paired));
   std::filesystem::remove_all(dir);
 }
 
