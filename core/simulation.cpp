@@ -11,6 +11,7 @@
 #include "energy_report.h"
 #include "linalg/blocked_vector_ops.h"
 #include "make_terms.h"
+#include "potential/first_failing_triangle.h"
 #include "potential/term_sums.h"
 #include "potential/work_blocks.h"
 #include "scene/fixed_nodes.h"
@@ -27,27 +28,6 @@ Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::~Simulation() = default;
 
 namespace {
-
-// The first triangle t (lowest index) whose det F fails `ok`, or -1: fixed blocks of
-// triangles on the pool, the lowest failing index of each, the first block's that has one.
-// The same answer for any thread count; at n_seg 256 one pass is ~0.5 ms on one thread.
-template <class Ok>
-int first_triangle_failing(const Mesh& mesh, const double* x, Ok&& ok) {
-  const int nt = mesh.triangle_count();
-  const BlockSplit tri = split_blocks(nt, kTriangleBlock, kMaxBlocks);
-  int first[kMaxBlocks];
-  run_blocks(tri.blocks, [&](int b) {
-    first[b] = -1;
-    for (int t = tri.begin(b), end = tri.end(b, nt); t < end; ++t)
-      if (!ok(triangle_deformation_gradient(mesh, x, t).determinant())) {
-        first[b] = t;
-        break;
-      }
-  });
-  for (int b = 0; b < tri.blocks; ++b)
-    if (first[b] >= 0) return first[b];
-  return -1;
-}
 
 // Checks the state a step produced: finite, no inversion when the model forbids it, every
 // node strictly between the planes. Returns Ok or the first violation found.
@@ -68,7 +48,7 @@ StepStatus check_invariants(const Simulation& sim, const VecX& x, const VecX& v,
     }
   }
   if (s.has_triangle_elasticity() && !model_allows_inversion(s.model)) {
-    const int t = first_triangle_failing(sim.mesh, x.data(), [](double det) { return det > 0.0; });
+    const int t = first_failing_triangle(sim.mesh, x.data(), [](double det) { return det > 0.0; });
     if (t >= 0) {
       *message = "triangle " + std::to_string(t) + " inverted (det F <= 0)";
       return StepStatus::Inverted;
@@ -183,7 +163,7 @@ StepStatus check_reported_quantities(const Simulation& sim, const ReportedState&
   if (!std::isfinite(report.energy)) return fail("the step's energy", report.energy);
   if (!std::isfinite(report.residual)) return fail("the Newton residual", report.residual);
   if (const int t =
-          first_triangle_failing(sim.mesh, x.data(), [](double det) { return std::isfinite(det); });
+          first_failing_triangle(sim.mesh, x.data(), [](double det) { return std::isfinite(det); });
       t >= 0)
     return fail("det F of triangle " + std::to_string(t),
                 triangle_deformation_gradient(sim.mesh, x.data(), t).determinant());
