@@ -37,7 +37,7 @@ namespace invfree::live {
 // on (the default) as well as off (checked with `xvfb-run -a invfree live --frames 300
 // --bench --set mesh.n_seg=N`, with and without `--set self_contact.enabled=false`). Larger meshes
 // can still be loaded from a scene file or --set, or allowed with --max-n-seg.
-constexpr int kDefaultMaxSegments = 96;
+constexpr int kDefaultMaxSegments = 104;
 
 // The UI scale's range: the panel's text is 16 px times the scale, and the det F panel is
 // its 1280x720 design times the scale.
