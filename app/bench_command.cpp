@@ -632,9 +632,10 @@ int run_bench(const BenchOptions& opt) {
   if (counts.front() == 0) counts = {thread_count()};
 
   if (several)
-    std::printf("the thread counts' runs take turns of %d steps: a drift in the machine's speed "
-                "affects them alike\n",
-                kStepsPerTurn);
+    std::printf(
+        "the thread counts' runs take turns of %d steps: a drift in the machine's speed "
+        "affects them alike\n",
+        kStepsPerTurn);
   print_header(several);
   const bool reference = is_reference_scene(*scene);
   std::vector<BenchRow> rows;

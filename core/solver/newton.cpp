@@ -120,7 +120,8 @@ struct Newton {
       if (settings.friction_crossing_stop)
         stopped = stop_friction_crossings(p, z, ws.trial, ws.crossings);
       if (stopped > 0 && path_step(p, caches, z, ws.trial) < 1.0) {
-        blocked_add_scaled(z, alpha, ws.direction, ws.trial);  // the straight trial: the stops would cross an edge
+        // The stops would cross an edge: the straight trial.
+        blocked_add_scaled(z, alpha, ws.direction, ws.trial);
         stopped = 0;
       }
       trial_energy = energy(ws.trial);

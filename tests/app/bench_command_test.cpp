@@ -190,8 +190,8 @@ TEST(BenchCommand, ThreadCountsTakeTurnsAndAFailedStepFailsAtEveryCount) {
   std::filesystem::remove_all(dir);
   // Two Newton iterations per step at most: the squash's first harder step fails.
   const test::ProcessResult r =
-      test::run_invfree({"bench", "--sizes", "8", "--steps", "50", "--out", dir, "--threads",
-                         "1,2", "--set", "time.max_newton=2"});
+      test::run_invfree({"bench", "--sizes", "8", "--steps", "50", "--out", dir, "--threads", "1,2",
+                         "--set", "time.max_newton=2"});
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("failed"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("take turns of 10 steps"), std::string::npos) << r.out;
