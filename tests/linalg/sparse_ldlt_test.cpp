@@ -318,8 +318,14 @@ TEST(SparseLdlt, SupernodalFactorSolvesLikeADenseReference) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Eigen::MatrixXd dense = Eigen::MatrixXd::NullaryExpr(75, 75, [&] { return u(rng); });
   dense = dense * dense.transpose() + 75.0 * Eigen::MatrixXd::Identity(75, 75);
-  std::vector<SpMat> matrices = {block_tree_matrix(1u), block_tree_matrix(2u),
-                                 mesh_matrix(52, 1.0, 12u), dense.sparseView()};
+  // One supernode of 301 columns: ten panels, each updating every column to its right, the
+  // last one shorter than the others.
+  Eigen::MatrixXd wide = Eigen::MatrixXd::NullaryExpr(301, 301, [&] { return u(rng); });
+  wide = wide * wide.transpose() + 301.0 * Eigen::MatrixXd::Identity(301, 301);
+  // n_seg 100: a top separator of ~200 columns, updated by hundreds of descendants.
+  std::vector<SpMat> matrices = {block_tree_matrix(1u),     block_tree_matrix(2u),
+                                 mesh_matrix(52, 1.0, 12u), dense.sparseView(),
+                                 wide.sparseView(),         mesh_matrix(100, 1.0, 13u)};
   for (const SpMat& a : matrices) {
     const bool large = a.rows() >= kNestedDissectionMinUnknowns;
     const VecX b = VecX::LinSpaced(a.rows(), -1.0, 2.0);
@@ -365,24 +371,28 @@ TEST(SparseLdlt, SupernodalFactorSolvesLikeADenseReference) {
   set_thread_count(0);
 }
 
-// A symmetric indefinite matrix whose leading minors are all nonzero: one dense supernode
-// of 70 columns (three panels) and a mesh with a negative diagonal shift. Without
-// positive_definite it factorises and solves like a dense reference; with it the first
-// negative pivot is reported as a failure.
+// Symmetric indefinite matrices whose leading minors are all nonzero: dense supernodes of
+// 70 columns (three panels) and 260 (nine panels, one front) and a mesh with a negative
+// diagonal shift. Without positive_definite they factorise and solve like a dense
+// reference; with it the first negative pivot is reported as a failure.
 TEST(SparseLdlt, SupernodalFactorTakesIndefiniteMatricesOnlyWhenAllowed) {
   std::mt19937 rng(7u);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::MatrixXd m = Eigen::MatrixXd::NullaryExpr(70, 70, [&] { return u(rng); });
-  m = (m + m.transpose()).eval();
-  for (int i = 0; i < 70; ++i) m(i, i) = (i % 3 == 1 ? -1.0 : 1.0) * (30.0 + i);
-  const std::vector<SpMat> matrices = {m.sparseView(), mesh_matrix(30, -1.0, 3u)};
+  auto indefinite = [&](int n) {
+    Eigen::MatrixXd m = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return u(rng); });
+    m = (m + m.transpose()).eval();
+    for (int i = 0; i < n; ++i) m(i, i) = (i % 3 == 1 ? -1.0 : 1.0) * (3.0 * n / 7.0 + i);
+    return SpMat(m.sparseView());
+  };
+  const std::vector<SpMat> matrices = {indefinite(70), indefinite(260), mesh_matrix(30, -1.0, 3u)};
   for (const SpMat& a : matrices) {
     const VecX b = VecX::LinSpaced(a.rows(), 1.0, -1.0);
     const VecX exact = Eigen::SimplicialLDLT<SpMat>(a).solve(b);
     std::vector<int> order(a.rows());
     std::iota(order.begin(), order.end(), 0);
     SparseLdlt ldlt;
-    ldlt.analyze(a, a.rows() == 70 ? order : amd_order(a), 3);
+    const bool dense = a.rows() == 70 || a.rows() == 260;
+    ldlt.analyze(a, dense ? order : amd_order(a), a.rows() == 260 ? 1 : 3);
     EXPECT_FALSE(ldlt.factorize(a, true)) << a.rows();
     ASSERT_TRUE(ldlt.factorize(a, false)) << a.rows();
     VecX x(a.rows());
