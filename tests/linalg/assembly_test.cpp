@@ -1,11 +1,13 @@
 // The performance paths give the same answers as the plain ones: the structured
-// per-triangle kernel equals the dense chain rule; the parallel assembly, energy and
+// per-triangle kernel equals the dense chain rule; the Hessian's pattern and slots are a
+// triplet build's; the parallel assembly, energy and
 // whole simulation are bit-identical for any number of threads; the colouring plan never
 // puts two chunks that share a node in one colour; the thread count is the core's setting
 // alone, never the environment's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <random>
@@ -83,6 +85,83 @@ TEST(AssemblyPlan, NoTwoChunksOfAColourShareANode) {
     }
     EXPECT_EQ(chunks * h.chunk_size >= mesh.triangle_count(), true);
     EXPECT_LE(h.colour_count(), 8) << "the square mesh should need only a few colours";
+  }
+}
+
+// The Hessian's pattern, written straight into the compressed arrays, is the one Eigen
+// builds from every entry the terms touch (a triplet list, summed), and each slot the
+// assembly writes to is that entry's place in it: on meshes with and without the ceiling's
+// unknown, with extra node pairs (a repeat, a pair already sharing a triangle, a node with
+// itself) and with a node that belongs to no triangle.
+TEST(SparseHessianPattern, MatchesATripletBuildAndItsSlots) {
+  struct Case {
+    Mesh mesh;
+    bool ceiling;
+    std::vector<std::array<int, 2>> pairs;
+  };
+  std::vector<Case> cases;
+  cases.push_back({square_mesh(1.0, 1), false, {}});
+  cases.push_back({square_mesh(1.0, 7), true, {}});
+  cases.push_back({square_mesh(2.0, 12), true, {{0, 13}, {13, 0}, {5, 5}, {0, 1}, {168, 3}}});
+  Mesh lonely = square_mesh(1.0, 3);
+  lonely.rest.push_back(Vec2(5.0, 5.0));  // a node in no triangle
+  cases.push_back({lonely, true, {{2, 9}}});
+  for (const Case& k : cases) {
+    const int n = static_cast<int>(k.mesh.rest.size());
+    const int dofs = 2 * n + (k.ceiling ? 1 : 0);
+    std::vector<Eigen::Triplet<double>> entries;
+    auto block = [&](int i, int j) {
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) entries.emplace_back(2 * i + a, 2 * j + b, 1.0);
+    };
+    for (const auto& tri : k.mesh.triangles)
+      for (int i : tri)
+        for (int j : tri) block(i, j);
+    for (int i = 0; i < n; ++i) block(i, i);
+    for (const auto& p : k.pairs) {
+      block(p[0], p[1]);
+      block(p[1], p[0]);
+    }
+    if (k.ceiling) {
+      entries.emplace_back(2 * n, 2 * n, 1.0);
+      for (int i = 0; i < n; ++i) {
+        entries.emplace_back(2 * i + 1, 2 * n, 1.0);
+        entries.emplace_back(2 * n, 2 * i + 1, 1.0);
+      }
+    }
+    Eigen::SparseMatrix<double> reference(dofs, dofs);
+    reference.setFromTriplets(entries.begin(), entries.end());
+    reference.makeCompressed();
+
+    const SparseHessian h = build_sparse_hessian(k.mesh, k.ceiling, k.pairs);
+    ASSERT_EQ(h.matrix.rows(), dofs);
+    ASSERT_TRUE(h.matrix.isCompressed());
+    ASSERT_EQ(h.matrix.nonZeros(), reference.nonZeros());
+    EXPECT_TRUE(std::equal(reference.outerIndexPtr(), reference.outerIndexPtr() + dofs + 1,
+                           h.matrix.outerIndexPtr()));
+    EXPECT_TRUE(std::equal(reference.innerIndexPtr(),
+                           reference.innerIndexPtr() + reference.nonZeros(),
+                           h.matrix.innerIndexPtr()));
+    auto slot = [&](int row, int col) { return sparse_slot(reference, row, col); };
+    for (int t = 0; t < k.mesh.triangle_count(); ++t)
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) {
+          const auto& tri = k.mesh.triangles[t];
+          ASSERT_EQ(h.triangle_slots[36 * t + 6 * a + b],
+                    slot(2 * tri[a / 2] + a % 2, 2 * tri[b / 2] + b % 2))
+              << "triangle " << t << " entry " << a << "," << b;
+        }
+    for (int i = 0; i < dofs; ++i) EXPECT_EQ(h.diagonal_slots[i], slot(i, i));
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(h.node_xy_slots[2 * i], slot(2 * i, 2 * i + 1));
+      EXPECT_EQ(h.node_xy_slots[2 * i + 1], slot(2 * i + 1, 2 * i));
+      if (k.ceiling) {
+        EXPECT_EQ(h.ceiling_slots[2 * i], slot(2 * i + 1, 2 * n));
+        EXPECT_EQ(h.ceiling_slots[2 * i + 1], slot(2 * n, 2 * i + 1));
+      }
+    }
+    EXPECT_EQ(h.ceiling_dof, k.ceiling ? 2 * n : -1);
+    for (int p = 0; p < h.matrix.nonZeros(); ++p) EXPECT_EQ(h.matrix.valuePtr()[p], 0.0);
   }
 }
 
