@@ -58,8 +58,8 @@ void build_assembly_plan(const Mesh& mesh, SparseHessian& h) {
 // neighbours i (itself, the nodes it shares a triangle with, its extra pairs) in
 // ascending order, the rows 2i and 2i+1; with a ceiling, each y column ends with the
 // ceiling's row c, and column c holds every node's y row, then c. Written straight into
-// the compressed arrays (no triplets: at n_seg 256 they were 4.7 M, 75 MB), and a
-// triangle's 36 slots come from the 9 positions of its node pairs.
+// the compressed arrays, since a list of every entry the triangles touch would hold 4.7 M
+// at n_seg 256 (75 MB, and a sort); a triangle's 36 slots come from its 9 node pairs.
 SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
                                    std::span<const std::array<int, 2>> extra_pairs) {
   const int n_nodes = mesh.node_count();
@@ -118,8 +118,7 @@ SparseHessian build_sparse_hessian(const Mesh& mesh, bool with_ceiling,
   }
   if (with_ceiling) outer[c + 1] = outer[c] + n_nodes + 1;
   h.matrix.resizeNonZeros(outer[n_dof]);
-  int* inner = h.matrix.innerIndexPtr();
-  std::fill(h.matrix.valuePtr(), h.matrix.valuePtr() + outer[n_dof], 0.0);
+  int* inner = h.matrix.innerIndexPtr();  // (the values are zeroed by set_zero, below)
   for (int j = 0; j < n_nodes; ++j)
     for (int b = 0; b < 2; ++b) {
       int p = outer[2 * j + b];
