@@ -1,9 +1,8 @@
 // The performance paths give the same answers as the plain ones: the structured
 // per-triangle kernel equals the dense chain rule; the Hessian's pattern and slots are a
-// triplet build's; the parallel assembly, energy and
-// whole simulation are bit-identical for any number of threads; the colouring plan never
-// puts two chunks that share a node in one colour; the thread count is the core's setting
-// alone, never the environment's.
+// triplet build's; the parallel assembly, energy and whole simulation are bit-identical
+// for any number of threads; the colouring plan never puts two chunks that share a node
+// in one colour; the thread count is the core's setting alone, never the environment's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
