@@ -12,10 +12,12 @@
 //  - each node visits the cells its box covers and keeps the edges whose boxes overlap its
 //    own, except its own incident edges; a pair is reported only from the cell holding the
 //    lower corner of the two boxes' intersection, so once, with no deduplication.
-// Output: pairs sorted by (node, edge), the same list whatever the grid, so that sums over
-// it are bit-identical. Built once per Newton iteration over the whole line-search segment
-// (alpha = the largest step), the list serves the energy, the CCD and every trial point.
-// The grid's buffers are reused: no allocation once they have grown.
+// Output: pairs sorted by (node, edge), the same list whatever the grid and the thread
+// count (blocks of nodes query the grid concurrently, each into its own list, joined in
+// node order), so that sums over it are bit-identical. Built once per Newton iteration
+// over the whole line-search segment (alpha = the largest step), the list serves the
+// energy, the CCD and every trial point. The grid's buffers are reused: no allocation
+// once they have grown.
 #pragma once
 
 #include <array>
@@ -29,15 +31,25 @@ struct Box {
   Vec2 lo, hi;
 };
 
+// Cells [i0, i1] x [j0, j1] that a box covers.
+struct CellRange {
+  int i0, i1, j0, j1;
+};
+
 struct BroadPhaseGrid {
   std::vector<Box> edge_boxes;
-  std::vector<int> cell_start;  // cell c holds cell_edges[cell_start[c] .. cell_start[c+1])
+  std::vector<CellRange> edge_cells;  // per edge: the cells its box covers
+  std::vector<int> cell_start;        // cell c holds cell_edges[cell_start[c] .. cell_start[c+1])
   std::vector<int> cell_edges;
+  std::vector<std::vector<PointEdgePair>> block_pairs;  // per block of nodes (candidates)
   Vec2 origin = Vec2::Zero();
   double cell_size = 1.0;
   int nx = 0, ny = 0;
 };
 
+// Room for `per_node` candidates per boundary node in the per-block lists, so that the
+// search allocates nothing until some block's nodes have more.
+void reserve_candidates(int node_count, int per_node, BroadPhaseGrid& grid);
 // Static pairs at x (no motion). x: 2 per mesh node (entries past 2N ignored).
 void point_edge_candidates(const Boundary& boundary, const VecX& x, double inflation,
                            BroadPhaseGrid& grid, std::vector<PointEdgePair>& out);

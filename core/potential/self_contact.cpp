@@ -41,10 +41,13 @@ void scatter_blocks(const std::vector<PointEdgeHessian>& blocks, SparseHessian& 
 void reserve_self_contact(const Boundary& boundary, SelfContactCache& cache, BroadPhaseGrid& grid) {
   const size_t ne = boundary.edges.size(), nb = boundary.nodes.size();
   grid.edge_boxes.reserve(ne);
+  grid.edge_cells.reserve(ne);
   grid.cell_start.reserve(12 * (ne + 1) + 2);  // at most 3 x 4 (ne + 1) + 1 cells
   grid.cell_edges.reserve(16 * ne);
+  reserve_candidates(static_cast<int>(nb), 32, grid);  // as clearance.pairs
   cache.pairs.reserve(16 * nb);
   cache.near.reserve(16 * nb);
+  cache.pair_sums.reserve(16 * nb);
   cache.clearance.pairs.reserve(32 * nb);
   cache.clearance.pair_slack.reserve(32 * nb);
   cache.clearance.at.resize(2 * static_cast<long>(nb));
@@ -56,7 +59,7 @@ double SelfContact::value(const TermPoint& at, double scale) const {
   SelfContactCache& cache = at.caches.contact;
   if (cache.pairs.empty() && cache.friction.empty()) return 0.0;
   const SelfContactTimer timer{cache.ms};
-  double e = self_contact_energy(*boundary, *rest, cache.pairs, at.z, params);
+  double e = self_contact_energy(*boundary, *rest, cache.pairs, at.z, params, &cache.pair_sums);
   if (!cache.friction.empty()) e += self_friction_energy(cache.friction, at.z, at.x_start, eps_u);
   return scale * e;
 }
@@ -67,10 +70,10 @@ void SelfContact::add_derivatives(const TermPoint& at, double scale, Assembly& o
   if (cache.pairs.empty() && cache.friction.empty()) return;
   const SelfContactTimer timer{cache.ms};
   add_self_contact_gradient_hessian(*boundary, *rest, cache.pairs, at.z, params, scale,
-                                    out.gradient, cache.hessians);
+                                    out.gradient, cache.hessians, &cache.pair_sums);
   if (!cache.friction.empty())
-    add_self_friction_gradient_hessian(cache.friction, at.z, at.x_start, eps_u, scale,
-                                       out.gradient, cache.hessians);
+    add_self_friction_gradient_hessian(cache.friction, at.z, at.x_start, eps_u, scale, out.gradient,
+                                       cache.hessians);
   if (!blocks_fit(cache.hessians, out.hessian)) {
     out.outgrown = true;
     list_block_pairs(cache.hessians, out.needed_pairs);

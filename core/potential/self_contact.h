@@ -40,6 +40,7 @@ struct SelfContactCache {
   // (self_contact_clearance.h); the step's invariant check measures it again.
   SelfContactClearance clearance;
   std::vector<PointEdgePair> near;  // the invariant check's near pairs (scratch)
+  PairSumScratch pair_sums;         // the sums over pairs on the threads
   // Steady-clock time spent in the term (a step): its broad phase, CCD, energy, derivatives
   // and the step's intersection check.
   double ms = 0.0;

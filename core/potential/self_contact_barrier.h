@@ -78,14 +78,29 @@ Mat6 point_edge_barrier_hessian(const Vec2& p, const Vec2& a, const Vec2& b,
 BarrierParams pair_barrier(const Boundary& boundary, const std::vector<Vec2>& rest,
                            const PointEdgePair& pair, const SelfContactParams& params);
 
+// Room for the sums over pairs to run over the threads: each pair's terms are computed
+// concurrently, in fixed blocks of pairs, into its own slots, and then added in pair order,
+// the serial loop's order, so the sums have the same bits on any number of threads, and
+// as without it. Grown to the largest pair list seen, never shrunk (no allocation once
+// grown).
+struct PairSumScratch {
+  std::vector<double> values;            // per pair: its barrier, 0 beyond its dhat
+  std::vector<unsigned char> active;     // per pair: within its own dhat
+  std::vector<Vec6> gradients;           // per active pair: its gradient
+  std::vector<PointEdgeHessian> blocks;  // per active pair: scale * its projected Hessian
+  void reserve(size_t pairs);
+};
+
 // Sums over the candidate pairs. Pairs at or beyond the scene's dhat cost one distance.
+// Without `scratch` (or with few pairs) they run on the calling thread.
 double self_contact_energy(const Boundary& boundary, const std::vector<Vec2>& rest,
                            std::span<const PointEdgePair> pairs, const VecX& x,
-                           const SelfContactParams& params);
+                           const SelfContactParams& params, PairSumScratch* scratch = nullptr);
 // gradient += scale * dE/dx; appends scale * each active pair's projected Hessian.
 void add_self_contact_gradient_hessian(const Boundary& boundary, const std::vector<Vec2>& rest,
                                        std::span<const PointEdgePair> pairs, const VecX& x,
                                        const SelfContactParams& params, double scale,
-                                       VecX& gradient, std::vector<PointEdgeHessian>& hessians);
+                                       VecX& gradient, std::vector<PointEdgeHessian>& hessians,
+                                       PairSumScratch* scratch = nullptr);
 
 }  // namespace invfree

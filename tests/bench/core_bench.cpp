@@ -294,12 +294,13 @@ void BM_SelfContactBarrier(benchmark::State& state) {
   const SelfContactParams params;
   VecX g = VecX::Zero(s.x.size());
   std::vector<PointEdgeHessian> hessians;
+  PairSumScratch scratch;  // as the step's: the sums over pairs on the threads
   for (auto _ : state) {
     benchmark::DoNotOptimize(
-        self_contact_energy(s.two.boundary, s.two.mesh.rest, pairs, s.x, params));
+        self_contact_energy(s.two.boundary, s.two.mesh.rest, pairs, s.x, params, &scratch));
     hessians.clear();
     add_self_contact_gradient_hessian(s.two.boundary, s.two.mesh.rest, pairs, s.x, params, 1.0, g,
-                                      hessians);
+                                      hessians, &scratch);
     benchmark::DoNotOptimize(self_contact_step(s.two.boundary, pairs, s.x, s.p, 1.0));
   }
   state.SetItemsProcessed(state.iterations() * s.two.boundary.edge_count());

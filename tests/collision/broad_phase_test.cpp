@@ -9,6 +9,7 @@
 #include <random>
 #include <set>
 
+#include "linalg/parallel.h"
 #include "potential/point_edge_distance.h"
 #include "tests/scene/body_fixtures.h"
 
@@ -128,6 +129,35 @@ TEST(BroadPhase, EdgePairsAreTheOverlappingBoxes) {
     });
     EXPECT_EQ(pairs, brute);
   }
+}
+
+// Blocks of nodes search the grid concurrently (above 256 boundary nodes): the list is the
+// brute force's, entry for entry, on 1, 2 and 3 threads, for a folded, moving pair of
+// 96-segment squares (768 boundary nodes, six blocks).
+TEST(BroadPhase, SameListOnAnyThreadCount) {
+  const test::TwoSquares two = test::two_squares(0.5, 96, Vec2(0.1, -0.505));
+  VecX x = test::flat_positions(two.mesh.rest);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < x.size(); ++i) x[i] += 0.003 * u(rng);
+  for (int i = 0; i < two.second; ++i)
+    if (x[2 * i + 1] > 0.1) x[2 * i + 1] = 0.2 - x[2 * i + 1];
+  VecX p(x.size());
+  for (int i = 0; i < p.size(); ++i) p[i] = 0.01 * u(rng);
+  ASSERT_EQ(two.boundary.node_count(), 768);
+  const std::vector<PointEdgePair> expected = brute_force_boxes(two.boundary, x, p, 0.8, 0.01);
+  ASSERT_GT(expected.size(), 2000u);
+  for (int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    BroadPhaseGrid grid;
+    reserve_candidates(two.boundary.node_count(), 4, grid);
+    std::vector<PointEdgePair> pairs;
+    swept_point_edge_candidates(two.boundary, x, p, 0.8, 0.01, grid, pairs);
+    EXPECT_EQ(pairs, expected) << threads << " threads";
+    point_edge_candidates(two.boundary, x, 0.01, grid, pairs);  // the same grid, reused
+    EXPECT_EQ(pairs, brute_force_boxes(two.boundary, x, p, 0.0, 0.01)) << threads << " threads";
+  }
+  set_thread_count(0);
 }
 
 }  // namespace
