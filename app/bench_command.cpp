@@ -486,6 +486,15 @@ std::vector<ChartSpec> thread_charts(const std::vector<BenchRow>& rows, const st
   speed.title = "speed-up of the median step against " + threads_label(counts.front());
   speed.x_label = "threads";
   speed.y_label = "speed-up";
+  // Ticks at the counts run, never at fractions of a thread. A sweep over a factor of 4 or
+  // more is drawn log-log, where ideal scaling is a straight line and doubling the threads
+  // is the same step everywhere; its speed-up axis is then ticked at the ideal speed-ups
+  // (a log axis's own labels would be the decades alone).
+  speed.log_x = speed.log_y = counts.back() >= 4 * counts.front();
+  for (int t : counts) {
+    speed.x_ticks.push_back(t);
+    if (speed.log_y) speed.y_ticks.push_back(double(t) / counts.front());
+  }
   std::vector<int> sizes;
   for (const auto& r : rows)
     if (std::find(sizes.begin(), sizes.end(), r.n_seg) == sizes.end()) sizes.push_back(r.n_seg);

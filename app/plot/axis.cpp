@@ -148,6 +148,21 @@ std::vector<Tick> axis_ticks(const AxisRange& r) {
   return r.log ? log_ticks(r) : linear_ticks(r);
 }
 
+std::vector<Tick> value_ticks(std::vector<double> values, const AxisRange& r) {
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  std::vector<Tick> ticks;
+  for (double v : values) {
+    const double a = r.to_axis(v);
+    if (!std::isfinite(a) || a < r.lo || a > r.hi) continue;
+    Tick t;
+    t.value = v;
+    t.label = format_tick(v);
+    ticks.push_back(t);
+  }
+  return ticks;
+}
+
 bool PlotFrame::plottable(double vx, double vy) const {
   return std::isfinite(x.to_axis(vx)) && std::isfinite(y.to_axis(vy));
 }

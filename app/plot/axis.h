@@ -26,6 +26,9 @@ struct Tick {
 
 AxisRange axis_range(const std::vector<double>& values, bool log);
 std::vector<Tick> axis_ticks(const AxisRange& range);
+// Ticks at exactly these values (sorted, repeats and values the axis cannot show left
+// out), each labelled with its value.
+std::vector<Tick> value_ticks(std::vector<double> values, const AxisRange& range);
 // Plain rendering of a tick value with up to 6 significant digits (%g), a real minus sign.
 std::string format_tick(double value);
 

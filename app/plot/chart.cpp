@@ -78,9 +78,11 @@ ChartLayout chart_layout(const ChartSpec& spec) {
       xs.push_back(s.x[i]);
       ys.push_back(s.y[i]);
     }
+  xs.insert(xs.end(), spec.x_ticks.begin(), spec.x_ticks.end());  // every given tick shows
+  ys.insert(ys.end(), spec.y_ticks.begin(), spec.y_ticks.end());
   const AxisRange xr = axis_range(xs, spec.log_x), yr = axis_range(ys, spec.log_y);
-  c.xticks = axis_ticks(xr);
-  c.yticks = axis_ticks(yr);
+  c.xticks = spec.x_ticks.empty() ? axis_ticks(xr) : value_ticks(spec.x_ticks, xr);
+  c.yticks = spec.y_ticks.empty() ? axis_ticks(yr) : value_ticks(spec.y_ticks, yr);
   bool has_legend = false;
   for (const Series& s : spec.series) has_legend = has_legend || !s.label.empty();
   const double legend_w = has_legend ? std::clamp(c.width * 0.25, 160.0 * u, 400.0 * u) : 0.0;

@@ -34,6 +34,9 @@ struct ChartSpec {
   bool log_x = false, log_y = false;
   std::vector<Series> series;
   std::vector<std::string> notes;  // paragraphs printed below the plot, word-wrapped
+  // When not empty, an axis's only ticks, each labelled with its value (counts such as
+  // thread counts, where a 1-2-5 step would put ticks at 1.2 threads).
+  std::vector<double> x_ticks, y_ticks;
   int width = 1280, height = 800;  // the plot's part; the notes add to the height
   // Text, lines and markers grow by this factor (a slide read from the back row: 1.6 at
   // 1920 x 1080 gives 56-px titles and 35-px tick labels).

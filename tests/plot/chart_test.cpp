@@ -152,6 +152,51 @@ TEST(Chart, LogAxisLabelsItsDecadesEvenly) {
   EXPECT_NEAR(left[3] - left[2], step, 1e-6);
 }
 
+// Given ticks replace the automatic ones: thread counts 1 and 2 on a linear axis get "1"
+// and "2" and no 1-2-5 ticks between them (no "1.5" threads); 1 to 16 on log axes get
+// every count labelled and no decade label.
+TEST(Chart, GivenTicksAreTheOnlyTicks) {
+  // The x axis's labels: below the plot, right of the y axis's labels.
+  const auto labels_below = [](const Canvas& canvas, double below) {
+    std::vector<std::string> out;
+    for (const TextItem& t : canvas.texts())
+      if (t.y0 > below && t.x0 > 0.1 * canvas.width()) out.push_back(t.text);
+    return out;
+  };
+  ChartSpec linear;
+  linear.series.push_back({"", {1.0, 2.0}, {1.0, 1.64}, kRed});
+  linear.x_ticks = {2.0, 1.0, 2.0};  // unsorted, repeated: drawn once each, in order
+  const auto a = chart_canvas({linear}, ChartFormat::Png);
+  const std::vector<std::string> below_a = labels_below(*a, a->height() * 0.85);
+  EXPECT_EQ(std::count(below_a.begin(), below_a.end(), "1"), 1);
+  EXPECT_EQ(std::count(below_a.begin(), below_a.end(), "2"), 1);
+  for (const std::string& t : below_a) EXPECT_EQ(t.find('.'), std::string::npos) << t;
+
+  ChartSpec sweep;
+  sweep.log_x = sweep.log_y = true;
+  sweep.series.push_back({"", {1, 2, 4, 8, 16}, {1.0, 1.9, 3.5, 5.8, 7.9}, kRed});
+  sweep.x_ticks = sweep.y_ticks = {1, 2, 4, 8, 16};
+  const auto b = chart_canvas({sweep}, ChartFormat::Png);
+  const std::vector<std::string> below_b = labels_below(*b, b->height() * 0.85);
+  for (const char* t : {"1", "2", "4", "8", "16"})
+    EXPECT_EQ(std::count(below_b.begin(), below_b.end(), t), 1) << t;
+  EXPECT_EQ(std::count(below_b.begin(), below_b.end(), "10"), 0);
+  // The y axis too: every count's label left of the plot.
+  int left = 0;
+  for (const TextItem& t : b->texts())
+    if (t.x1 < b->width() * 0.15 && (t.text == "4" || t.text == "8" || t.text == "16")) ++left;
+  EXPECT_EQ(left, 3);
+  // Equal ratios, equal steps: 1 -> 2 -> 4 -> 8 -> 16 evenly spaced on the log axis.
+  std::vector<double> x;
+  for (const TextItem& t : b->texts())
+    if (t.y0 > b->height() * 0.85 && t.x0 > 0.1 * b->width() &&
+        t.text.find_first_not_of("0123456789") == std::string::npos)
+      x.push_back(0.5 * (t.x0 + t.x1));
+  std::sort(x.begin(), x.end());
+  ASSERT_EQ(x.size(), 5u);
+  for (size_t k = 2; k < x.size(); ++k) EXPECT_NEAR(x[k] - x[k - 1], x[1] - x[0], 1.0);
+}
+
 TEST(Chart, NotesStayInsideTheDrawing) {
   ChartSpec spec;
   spec.series.push_back({"a series with a label", {1.0, 2.0}, {1.0, 2.0}, kRed, true, true});
